@@ -1,0 +1,165 @@
+// vesselmesh: the command-line front end of the core.
+//   vesselmesh info FILE [--json] [--radius-array NAME]
+//   vesselmesh synth -o FILE --sections N [--loops K] [--seed S] [--binary]
+//   vesselmesh mesh IN -o OUT.{ply,obj,stl} [--levels N] [--sampling ...] [--alpha A] [--beta B]
+//                   [--caps flat|open] [--stats-json FILE]
+//   vesselmesh check MESH [--centerline IN] [--json]
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/mesh/mesh_files.hpp"
+#include "vesselmesh/pipeline.hpp"
+#include "vesselmesh/read/read.hpp"
+#include "vesselmesh/synth/synth.hpp"
+#include "vesselmesh/write/centerline_vtk.hpp"
+
+using namespace vesselmesh;
+
+namespace {
+
+void print_info(const CenterlineGraph& g, const std::string& file) {
+  const auto j = nlohmann::json::parse(summary_json(g));
+  const auto& n = j["normalisation"];
+  std::cout << file << "\n"
+            << "  points      " << j["points"] << "\n"
+            << "  edges       " << j["edges"] << "\n"
+            << "  components  " << j["components"] << "\n"
+            << "  branches    " << j["branches"] << "\n"
+            << "  joints      " << j["joints"] << " (max degree " << j["max_degree"] << ")\n"
+            << "  terminals   " << j["terminals"] << "\n"
+            << "  loops       " << j["loops"] << "\n"
+            << "  radius      " << j["radius"]["min"] << " .. " << j["radius"]["max"] << " (per "
+            << j["radius"]["per"].get<std::string>() << ")\n"
+            << "  bbox        " << j["bbox"]["min"].dump() << " .. " << j["bbox"]["max"].dump() << "\n"
+            << "  normalised  " << n["input_points"] << " points, " << n["input_edges"] << " edges read; merged "
+            << n["merged_points"] << " coincident points, dropped " << n["zero_length_edges"]
+            << " zero-length and " << n["duplicate_edges"] << " duplicate edges and " << n["isolated_points"]
+            << " isolated points\n";
+}
+
+void print_check(const CheckReport& r, const std::string& file) {
+  const TopologyReport& t = r.topology;
+  std::cout << file << "\n"
+            << "  closed manifold      " << (t.closed_manifold() ? "yes" : "no") << " (" << t.boundary_edges
+            << " boundary edges, " << t.non_manifold_edges << " non-manifold edges, " << t.non_manifold_vertices
+            << " non-manifold vertices, " << t.inconsistent_edges << " inconsistently oriented edges, "
+            << t.degenerate_faces << " degenerate faces)\n"
+            << "  size                 " << t.vertices << " vertices, " << t.faces << " triangles\n"
+            << "  components, genus    " << t.components << ", " << t.genus << " (Euler characteristic "
+            << t.euler_characteristic << ")\n"
+            << "  self-intersections   " << r.intersections.pairs << " triangle pairs ("
+            << r.intersections.pairs_in_overlapping_tubes << " where the input tubes overlap)\n"
+            << "  radius ratio R/r     median " << r.quality.radius_ratio.median << ", max "
+            << r.quality.radius_ratio.max << "\n"
+            << "  minimum angle        median " << r.quality.min_angle.median << ", min " << r.quality.min_angle.min
+            << " degrees\n";
+  if (r.fidelity)
+    std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median << " %, 95th "
+              << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"VesselMesh: smooth, closed, adaptive vessel surfaces from centerline graphs"};
+  app.require_subcommand(1);
+
+  std::string info_file, radius_array;
+  bool json = false;
+  CLI::App* info = app.add_subcommand("info", "Read a centerline file and describe its graph");
+  info->add_option("FILE", info_file, "centerline file: .swc .vtk .vtp, or a vertices/edges .csv pair")
+      ->required();
+  info->add_flag("--json", json, "print JSON instead of text");
+  info->add_option("--radius-array", radius_array, "name of the array or column holding the radius");
+
+  std::string synth_out;
+  SynthOptions synth_options;
+  bool binary = false;
+  CLI::App* synth = app.add_subcommand("synth", "Write a deterministic synthetic arterial network (legacy VTK)");
+  synth->add_option("-o,--output", synth_out, "output .vtk file")->required();
+  synth->add_option("--sections", synth_options.sections, "about this many cross-sections")
+      ->check(CLI::Range(int64_t{2}, int64_t{100000000}));
+  synth->add_option("--loops", synth_options.loops, "anastomosis loops to add")->check(CLI::NonNegativeNumber);
+  synth->add_option("--seed", synth_options.seed, "random seed (same seed, same network)");
+  synth->add_flag("--binary", binary, "write binary VTK (smaller and faster for large networks)");
+
+  std::string mesh_in, mesh_out, stats_file;
+  MeshOptions mesh_options;
+  CLI::App* mesh = app.add_subcommand("mesh", "Build the vessel surface of a centerline");
+  mesh->add_option("IN", mesh_in, "centerline file")->required();
+  mesh->add_option("-o,--output", mesh_out, "surface file: .ply, .obj or .stl")->required();
+  mesh->add_option("--levels", mesh_options.levels, "Loop subdivision levels")->check(CLI::Range(0, 4));
+  mesh->add_option("--sampling", mesh_options.sampling.method, "cross-section sampling")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Sampling>{{"bidirectional", Sampling::bidirectional},
+                                          {"unidirectional", Sampling::unidirectional}}));
+  mesh->add_option("--alpha", mesh_options.sampling.alpha, "spacing scale (1: about one diameter)")
+      ->check(CLI::PositiveNumber);
+  mesh->add_option("--beta", mesh_options.sampling.beta, "curvature weight, in median radii")
+      ->check(CLI::NonNegativeNumber);
+  mesh->add_option("--caps", mesh_options.caps, "terminal ends")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Caps>{{"flat", Caps::flat}, {"open", Caps::open}}));
+  mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");
+  mesh->add_option("--radius-array", radius_array, "name of the array or column holding the radius");
+
+  std::string check_in, check_centerline;
+  CLI::App* check = app.add_subcommand("check", "Check a surface: closed, manifold, intersections, quality");
+  check->add_option("MESH", check_in, "surface file: .ply, .obj or .stl")->required();
+  check->add_option("--centerline", check_centerline, "centerline it was made from, for radius fidelity");
+  check->add_flag("--json", json, "print JSON");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*info) {
+      ReadOptions options;
+      options.radius_array = radius_array;
+      const CenterlineGraph graph = build_graph(read_centerline(info_file, options));
+      if (json)
+        std::cout << summary_json(graph) << "\n";
+      else
+        print_info(graph, info_file);
+    } else if (*synth) {
+      const auto start = std::chrono::steady_clock::now();
+      const CenterlineData data = synthesize_network(synth_options);
+      write_centerline_vtk(data, synth_out, binary);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::cerr << "wrote " << synth_out << ": " << data.points.size() << " points, " << data.edges.size()
+                << " edges in " << seconds << " s\n";
+    } else if (*mesh) {
+      ReadOptions options;
+      options.radius_array = radius_array;
+      const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options));
+      const MeshResult result = mesh_centerline(graph, mesh_options);
+      write_mesh(result.mesh, mesh_out);
+      std::cerr << "wrote " << mesh_out << ": " << result.mesh.vertices.size() << " vertices, "
+                << result.mesh.faces.size() << " triangles\n";
+      if (!stats_file.empty()) {
+        std::ofstream out(stats_file);
+        out << stats_json(result) << "\n";
+        if (!out) throw std::runtime_error("cannot write " + stats_file);
+      }
+    } else if (*check) {
+      const TriMesh surface = read_mesh(check_in);
+      std::optional<CenterlineGraph> graph;
+      if (!check_centerline.empty()) graph = build_graph(read_centerline(check_centerline));
+      const CheckReport report = check_mesh(surface, graph ? &*graph : nullptr);
+      if (json)
+        std::cout << report_json(report) << "\n";
+      else
+        print_check(report, check_in);
+      // Status 2 when the surface is not a closed manifold or intersects itself where the tubes do not.
+      const auto& x = report.intersections;
+      return report.topology.closed_manifold() && x.pairs == x.pairs_in_overlapping_tubes ? 0 : 2;
+    }
+  } catch (const std::exception& e) {  // InputError names the file and place; others say what failed
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,225 @@
+// vesselmesh_core: the core as a Python module (numpy arrays in, numpy arrays out). Importable by
+// /usr/bin/python3 and inside Blender. C++ errors become Python exceptions: InputError (bad input,
+// naming the file and place) derives from ValueError; anything else is a RuntimeError.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+
+#include "vesselmesh/error.hpp"
+#include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/pipeline.hpp"
+#include "vesselmesh/read/read.hpp"
+#include "vesselmesh/synth/synth.hpp"
+
+namespace py = pybind11;
+using namespace vesselmesh;
+
+namespace {
+
+template <typename T>
+py::array_t<T> to_array(const T* data, std::vector<py::ssize_t> shape) {
+  py::array_t<T> out(shape);
+  if (out.nbytes() > 0) std::memcpy(out.mutable_data(), data, out.nbytes());
+  return out;
+}
+
+py::array_t<double> points_array(const std::vector<Vec3>& p) {
+  return to_array(p.empty() ? nullptr : p.front().data(), {static_cast<py::ssize_t>(p.size()), 3});
+}
+
+py::array_t<int32_t> edges_array(const std::vector<Edge>& e) {
+  return to_array(e.empty() ? nullptr : e.front().data(), {static_cast<py::ssize_t>(e.size()), 2});
+}
+
+py::object optional_vector(const std::vector<double>& v) {
+  if (v.empty()) return py::none();
+  return to_array(v.data(), {static_cast<py::ssize_t>(v.size())});
+}
+
+/// CenterlineData as a dict of numpy arrays; `radius` or `edge_radius` is None, whichever is absent.
+py::dict data_dict(const CenterlineData& d) {
+  py::dict out;
+  out["points"] = points_array(d.points);
+  out["radius"] = optional_vector(d.radius);
+  out["edges"] = edges_array(d.edges);
+  out["edge_radius"] = optional_vector(d.edge_radius);
+  out["roots"] = to_array(d.roots.data(), {static_cast<py::ssize_t>(d.roots.size())});
+  return out;
+}
+
+using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Indices = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+CenterlineData data_from_arrays(const Points& points, const Indices& edges, const std::optional<Values>& radius,
+                                const std::optional<Values>& edge_radius, const std::optional<Indices>& roots) {
+  if (points.ndim() != 2 || points.shape(1) != 3) throw InputError("arrays", "", "points must have shape (N, 3)");
+  if (edges.ndim() != 2 || edges.shape(1) != 2) throw InputError("arrays", "", "edges must have shape (E, 2)");
+  CenterlineData d;
+  d.points.resize(points.shape(0));
+  std::memcpy(d.points.data(), points.data(), sizeof(double) * 3 * d.points.size());
+  d.edges.resize(edges.shape(0));
+  auto e = edges.unchecked<2>();
+  for (py::ssize_t i = 0; i < edges.shape(0); ++i)
+    for (int k = 0; k < 2; ++k) {
+      if (e(i, k) < INT32_MIN || e(i, k) > INT32_MAX)
+        throw InputError("arrays", "edge " + std::to_string(i), "point index out of range");
+      d.edges[i][k] = static_cast<int32_t>(e(i, k));
+    }
+  auto vector_of = [](const Values& v, const char* name) {
+    if (v.ndim() != 1) throw InputError("arrays", "", std::string(name) + " must be one-dimensional");
+    return std::vector<double>(v.data(), v.data() + v.shape(0));
+  };
+  if (radius) d.radius = vector_of(*radius, "radius");
+  if (edge_radius) d.edge_radius = vector_of(*edge_radius, "edge_radius");
+  if (roots)
+    for (py::ssize_t i = 0; i < roots->size(); ++i) d.roots.push_back(static_cast<int32_t>(roots->data()[i]));
+  validate(d, "arrays");
+  return d;
+}
+
+py::object json_to_python(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+TriMesh mesh_from_arrays(const Points& vertices, const Indices& faces) {
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw InputError("arrays", "", "vertices must have shape (V, 3)");
+  if (faces.ndim() != 2 || faces.shape(1) != 3) throw InputError("arrays", "", "faces must have shape (F, 3)");
+  TriMesh m;
+  m.vertices.resize(vertices.shape(0));
+  std::memcpy(m.vertices.data(), vertices.data(), sizeof(double) * 3 * m.vertices.size());
+  m.faces.resize(faces.shape(0));
+  auto f = faces.unchecked<2>();
+  for (py::ssize_t i = 0; i < faces.shape(0); ++i)
+    for (int k = 0; k < 3; ++k) {
+      if (f(i, k) < 0 || f(i, k) >= vertices.shape(0))
+        throw InputError("arrays", "face " + std::to_string(i), "vertex index " + std::to_string(f(i, k)) +
+                                                                   " is out of range");
+      m.faces[i][k] = static_cast<int32_t>(f(i, k));
+    }
+  return m;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(vesselmesh_core, m) {
+  m.doc() = "VesselMesh core: centerline readers, graph, and (later stages) surface meshing.";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+  m.def(
+      "read",
+      [](const std::string& path, const std::string& radius_array) {
+        ReadOptions options;
+        options.radius_array = radius_array;
+        CenterlineData d;
+        {
+          py::gil_scoped_release release;
+          d = read_centerline(path, options);
+        }
+        return data_dict(d);
+      },
+      py::arg("path"), py::arg("radius_array") = "",
+      "Read a centerline file (.swc .vtk .vtp, or a vertices/edges .csv pair) into a dict of numpy arrays:\n"
+      "points (N,3) float64, radius (N,) or None, edges (E,2) int32, edge_radius (E,) or None, roots (R,) int32.");
+
+  m.def(
+      "synthesize",
+      [](int64_t sections, int loops, uint64_t seed) {
+        SynthOptions o;
+        o.sections = sections, o.loops = loops, o.seed = seed;
+        CenterlineData d;
+        {
+          py::gil_scoped_release release;
+          d = synthesize_network(o);
+        }
+        return data_dict(d);
+      },
+      py::arg("sections") = 2000, py::arg("loops") = 0, py::arg("seed") = 1,
+      "A deterministic synthetic arterial network (millimetres), as a dict like read().");
+
+  py::class_<CenterlineGraph>(m, "Graph",
+                              "The normalised centerline graph (coincident points merged, zero-length and\n"
+                              "duplicate edges dropped) with its topology.")
+      .def(py::init([](const Points& points, const Indices& edges, std::optional<Values> radius,
+                       std::optional<Values> edge_radius, std::optional<Indices> roots) {
+             return build_graph(data_from_arrays(points, edges, radius, edge_radius, roots));
+           }),
+           py::arg("points"), py::arg("edges"), py::kw_only(), py::arg("radius") = py::none(),
+           py::arg("edge_radius") = py::none(), py::arg("roots") = py::none(),
+           "Build from points (N,3), edges (E,2) and either radius (N,) or edge_radius (E,).")
+      .def_static(
+          "read",
+          [](const std::string& path, const std::string& radius_array) {
+            ReadOptions options;
+            options.radius_array = radius_array;
+            py::gil_scoped_release release;
+            return build_graph(read_centerline(path, options));
+          },
+          py::arg("path"), py::arg("radius_array") = "", "Read a centerline file and build its graph.")
+      .def_property_readonly("points", [](const CenterlineGraph& g) { return points_array(g.points); })
+      .def_property_readonly("edges", [](const CenterlineGraph& g) { return edges_array(g.edges); })
+      .def_property_readonly("radius", [](const CenterlineGraph& g) { return optional_vector(g.radius); },
+                             "(N,) the largest radius of each point's edge ends")
+      .def_property_readonly(
+          "end_radius",
+          [](const CenterlineGraph& g) {
+            return to_array(g.end_radius.empty() ? nullptr : g.end_radius.front().data(),
+                            {static_cast<py::ssize_t>(g.end_radius.size()), 2});
+          },
+          "(E,2) the radius at each end of each edge")
+      .def_property_readonly("roots", [](const CenterlineGraph& g) {
+        return to_array(g.roots.data(), {static_cast<py::ssize_t>(g.roots.size())});
+      })
+      .def_property_readonly("loops", [](const CenterlineGraph& g) { return g.loops; })
+      .def_property_readonly("components", [](const CenterlineGraph& g) { return g.components; })
+      .def(
+          "summary", [](const CenterlineGraph& g) { return json_to_python(summary_json(g, -1)); },
+          "The figures of `vesselmesh info --json` as a dict.");
+
+  m.def(
+      "mesh",
+      [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
+         const std::string& caps) {
+        MeshOptions o;
+        o.levels = levels;
+        if (sampling != "bidirectional" && sampling != "unidirectional")
+          throw std::invalid_argument("sampling must be 'bidirectional' or 'unidirectional'");
+        o.sampling.method = sampling == "bidirectional" ? Sampling::bidirectional : Sampling::unidirectional;
+        o.sampling.alpha = alpha;
+        o.sampling.beta = beta;
+        if (caps != "flat" && caps != "open") throw std::invalid_argument("caps must be 'flat' or 'open'");
+        o.caps = caps == "flat" ? Caps::flat : Caps::open;
+        MeshResult r;
+        {
+          py::gil_scoped_release release;
+          r = mesh_centerline(graph, o);
+        }
+        py::dict out;
+        out["vertices"] = points_array(r.mesh.vertices);
+        out["faces"] = to_array(r.mesh.faces.empty() ? nullptr : r.mesh.faces.front().data(),
+                                {static_cast<py::ssize_t>(r.mesh.faces.size()), 3});
+        out["stats"] = json_to_python(stats_json(r, -1));
+        return out;
+      },
+      py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
+      py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat",
+      "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
+      "from outside) and stats (counts and per-stage times).");
+
+  m.def(
+      "check",
+      [](const Points& vertices, const Indices& faces, const CenterlineGraph* graph) {
+        const TriMesh mesh = mesh_from_arrays(vertices, faces);
+        CheckReport report;
+        {
+          py::gil_scoped_release release;
+          report = check_mesh(mesh, graph);
+        }
+        return json_to_python(report_json(report, -1));
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("graph") = nullptr,
+      "What `vesselmesh check --json` reports for a surface (radius fidelity when a graph is given).");
+}

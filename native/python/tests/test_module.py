@@ -1,0 +1,124 @@
+"""The Python module: readers into numpy arrays, graphs from numpy arrays, errors as exceptions."""
+import numpy as np
+import pytest
+
+import vesselmesh_core as vm
+
+
+def test_read_returns_numpy_arrays_with_documented_shapes(project_data):
+    data = vm.read(str(project_data / "bifurcation.swc"))
+    assert data["points"].shape == (10, 3) and data["points"].dtype == np.float64
+    assert data["edges"].shape == (9, 2) and data["edges"].dtype == np.int32
+    assert data["radius"].shape == (10,)
+    assert data["edge_radius"] is None
+    assert list(data["roots"]) == [0]
+
+
+def test_per_edge_radius_comes_back_as_edge_radius(project_data):
+    data = vm.read(str(project_data / "ring_with_tail.vtk"))
+    assert data["radius"] is None
+    np.testing.assert_allclose(data["edge_radius"], [1.0, 1.0, 0.8, 0.8, 1.2, 1.2])
+
+
+@pytest.mark.parametrize("name, points, edges, loops", [
+    ("bifurcation.swc", 10, 9, 0),
+    ("ring_with_tail.vtk", 6, 6, 1),
+    ("y_vertices.csv", 4, 3, 0),
+    ("y_edges.csv", 4, 3, 0),
+    ("two_lines.vtp", 5, 4, 0),
+])
+def test_every_format_builds_a_graph(project_data, name, points, edges, loops):
+    summary = vm.Graph.read(str(project_data / name)).summary()
+    assert (summary["points"], summary["edges"], summary["loops"]) == (points, edges, loops)
+
+
+def test_overlapping_vmtk_lines_merge_into_one_bifurcation(project_data):
+    summary = vm.Graph.read(str(project_data / "two_lines.vtp")).summary()
+    assert summary["joints"] == 1 and summary["branches"] == 3
+    assert summary["normalisation"]["merged_points"] == 3
+    assert summary["normalisation"]["duplicate_edges"] == 2
+
+
+def test_graph_from_numpy_arrays_matches_graph_from_file(project_data):
+    data = vm.read(str(project_data / "bifurcation.swc"))
+    graph = vm.Graph(data["points"], data["edges"], radius=data["radius"], roots=data["roots"])
+    from_file = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    np.testing.assert_array_equal(graph.points, from_file.points)
+    np.testing.assert_array_equal(graph.edges, from_file.edges)
+    assert graph.summary() == from_file.summary()
+
+
+def test_graph_accepts_lists_and_integer_dtypes():
+    graph = vm.Graph([[0, 0, 0], [1, 0, 0], [2, 0, 0]], np.array([[0, 1], [1, 2]], np.int64), radius=[0.1] * 3)
+    assert graph.summary()["branches"] == 1
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(radius=[1.0, -1.0]), "point 1: radius -1"),
+    (dict(radius=[1.0, float("nan")]), "point 1: radius is not a finite number"),
+    (dict(), "no radius"),
+    (dict(radius=[1.0, 1.0], edge_radius=[1.0]), "both per point and per edge"),
+])
+def test_bad_arrays_raise_input_error_naming_the_element(kwargs, message):
+    with pytest.raises(vm.InputError, match=message):
+        vm.Graph([[0, 0, 0], [1, 0, 0]], [[0, 1]], **kwargs)
+
+
+def test_edge_index_out_of_range_is_an_input_error():
+    with pytest.raises(vm.InputError, match="edge 0: point index 5"):
+        vm.Graph([[0, 0, 0], [1, 0, 0]], [[0, 5]], radius=[1, 1])
+
+
+def test_input_error_is_a_value_error_naming_file_and_line(tmp_path):
+    bad = tmp_path / "bad.swc"
+    bad.write_text("1 1 0 0 0 1 -1\n2 1 0 0 x 1 1\n")
+    with pytest.raises(ValueError, match=r"bad.swc: line 2"):
+        vm.read(str(bad))
+
+
+def test_missing_file_is_an_input_error(tmp_path):
+    with pytest.raises(vm.InputError, match="cannot open|no such file"):
+        vm.read(str(tmp_path / "nothing.swc"))
+
+
+def test_synthesize_is_deterministic_and_has_the_requested_loops():
+    a = vm.synthesize(sections=500, loops=2, seed=7)
+    b = vm.synthesize(sections=500, loops=2, seed=7)
+    np.testing.assert_array_equal(a["points"], b["points"])
+    graph = vm.Graph(a["points"], a["edges"], radius=a["radius"])
+    assert graph.loops == 2 and graph.components == 1
+
+
+def test_shared_brava_tree_reads_with_its_published_counts(shared_data):
+    summary = vm.Graph.read(str(shared_data / "brava-bg0003" / "BG0003_ColorCoded.CNG.swc")).summary()
+    assert (summary["points"], summary["branches"], summary["joints"], summary["loops"]) == (3470, 219, 109, 0)
+
+
+def test_mesh_returns_a_closed_surface_as_numpy_arrays(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    surface = vm.mesh(graph, levels=1)
+    assert surface["vertices"].shape[1] == 3 and surface["vertices"].dtype == np.float64
+    assert surface["faces"].shape[1] == 3 and surface["faces"].dtype == np.int32
+    assert surface["stats"]["triangles"] == len(surface["faces"])
+    report = vm.check(surface["vertices"], surface["faces"], graph)
+    assert report["closed_manifold"]
+    assert report["topology"]["euler_characteristic"] == 2
+
+
+def test_mesh_of_a_loop_has_genus_one(project_data):
+    graph = vm.Graph.read(str(project_data / "ring_with_tail.vtk"))
+    surface = vm.mesh(graph, levels=0)
+    report = vm.check(surface["vertices"], surface["faces"])
+    assert report["topology"]["genus"] == 1
+
+
+@pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7)])
+def test_mesh_rejects_unknown_options(project_data, kwargs):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    with pytest.raises((ValueError, vm.InputError)):
+        vm.mesh(graph, **kwargs)
+
+
+def test_check_rejects_faces_out_of_range():
+    with pytest.raises(vm.InputError, match="face 0"):
+        vm.check(np.zeros((3, 3)), np.array([[0, 1, 5]]))

@@ -1,0 +1,151 @@
+#pragma once
+// The project's own centerline fixtures, one per kind of joint and hard case, built in code so that
+// each says what it is. Units are arbitrary: every builder takes a scale.
+
+#include <cmath>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "vesselmesh/centerline.hpp"
+
+namespace vesselmesh::fixtures {
+
+/// Appends a straight run of `n` edges from point `from` to `to` (new points after `from`), radius
+/// going linearly from r0 to r1; returns the index of the last point.
+inline int32_t run(CenterlineData& d, int32_t from, const Vec3& to, int n, double r1) {
+  const Vec3 a = d.points[from];
+  const double r0 = d.radius[from];
+  int32_t prev = from;
+  for (int i = 1; i <= n; ++i) {
+    const double f = static_cast<double>(i) / n;
+    d.points.push_back(a + f * (to - a));
+    d.radius.push_back(r0 + f * (r1 - r0));
+    d.edges.push_back({prev, static_cast<int32_t>(d.points.size()) - 1});
+    prev = static_cast<int32_t>(d.points.size()) - 1;
+  }
+  return prev;
+}
+
+inline CenterlineData start(const Vec3& p, double r) {
+  CenterlineData d;
+  d.points = {p};
+  d.radius = {r};
+  return d;
+}
+
+inline Vec3 dir(double degrees_from_z, double azimuth_degrees = 0) {
+  const double t = degrees_from_z * M_PI / 180, a = azimuth_degrees * M_PI / 180;
+  return {std::sin(t) * std::cos(a), std::sin(t) * std::sin(a), std::cos(t)};
+}
+
+/// A trunk along +z into a joint at the origin, then children in the given directions (degrees from +z,
+/// azimuth) with the given radii. Trunk radius 1, each arm 10 long, all times `scale`.
+inline CenterlineData star(const std::vector<std::array<double, 3>>& children, double scale, double trunk_r = 1) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), trunk_r * scale);
+  const int32_t joint = run(d, 0, Vec3::Zero(), 10, trunk_r * scale);
+  for (const auto& [theta, azimuth, r] : children) {
+    d.radius[joint] = trunk_r * scale;
+    run(d, joint, 10 * scale * dir(theta, azimuth), 10, r * scale);
+  }
+  return d;
+}
+
+inline CenterlineData bifurcation(double scale) { return star({{30, 0, 0.8}, {30, 180, 0.8}}, scale); }
+inline CenterlineData trifurcation(double scale) {
+  return star({{35, 0, 0.7}, {35, 120, 0.7}, {35, 240, 0.7}}, scale);
+}
+/// Six arms along ±x, ±y, ±z meeting at one point (the trunk is the −z arm).
+inline CenterlineData six_way(double scale) {
+  return star({{0, 0, 0.6}, {90, 0, 0.6}, {90, 90, 0.6}, {90, 180, 0.6}, {90, 270, 0.6}}, scale);
+}
+/// A side branch that turns back towards the trunk's origin, 150° from the direction of flow.
+inline CenterlineData backward_branch(double scale) { return star({{0, 0, 1}, {150, 0, 0.5}}, scale); }
+/// Two inflows merging into one outflow: the joint has two parents and one child.
+inline CenterlineData two_parents(double scale) {
+  CenterlineData d = start(Vec3(-6 * scale, 0, -10 * scale), 0.8 * scale);
+  const int32_t joint = run(d, 0, Vec3::Zero(), 10, 1.0 * scale);
+  d.points.push_back(Vec3(6 * scale, 0, -10 * scale));
+  d.radius.push_back(0.8 * scale);
+  const int32_t other = static_cast<int32_t>(d.points.size()) - 1;
+  const int32_t last = run(d, other, Vec3(0.6 * scale, 0, -1 * scale), 9, 1.0 * scale);
+  d.edges.push_back({last, joint});
+  run(d, joint, Vec3(0, 0, 10 * scale), 10, 1.0 * scale);
+  return d;
+}
+/// A trunk that splits into two arcs which join again (one loop), then continues.
+inline CenterlineData loop(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
+  const int32_t a = run(d, 0, Vec3::Zero(), 8, 1 * scale);
+  const int32_t b_left = run(d, a, Vec3(-6 * scale, 0, 8 * scale), 8, 0.7 * scale);
+  const int32_t top = run(d, b_left, Vec3(0, 0, 16 * scale), 8, 1 * scale);
+  const int32_t b_right = run(d, a, Vec3(6 * scale, 0, 8 * scale), 8, 0.7 * scale);
+  d.edges.push_back({b_right, static_cast<int32_t>(d.points.size())});
+  d.points.push_back(Vec3(3 * scale, 0, 12 * scale));
+  d.radius.push_back(0.85 * scale);
+  d.edges.push_back({static_cast<int32_t>(d.points.size()) - 1, top});
+  run(d, top, Vec3(0, 0, 26 * scale), 8, 1 * scale);
+  return d;
+}
+/// Two children only `degrees` apart.
+inline CenterlineData tiny_angle(double degrees, double scale) {
+  return star({{degrees / 2, 0, 0.7}, {degrees / 2, 180, 0.7}}, scale);
+}
+/// Two joints joined by a segment shorter than the radius.
+inline CenterlineData short_segment(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
+  const int32_t a = run(d, 0, Vec3::Zero(), 10, 1 * scale);
+  const int32_t b = run(d, a, Vec3(0, 0, 0.5 * scale), 1, 1 * scale);
+  run(d, a, 10 * scale * dir(70, 0), 10, 0.6 * scale);
+  run(d, b, 10 * scale * dir(70, 180), 10, 0.6 * scale);
+  run(d, b, Vec3(0, 0, 10 * scale), 10, 0.9 * scale);
+  return d;
+}
+/// A quarter circle of bend radius `bend` (in radii) of a vessel of radius 1, densely sampled.
+inline CenterlineData bend(double bend_radii, double scale) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
+  int32_t prev = run(d, 0, Vec3::Zero(), 5, 1 * scale);
+  const double R = bend_radii * scale;
+  for (int i = 1; i <= 40; ++i) {
+    const double a = M_PI / 2 * i / 40;
+    d.points.push_back(Vec3(R - R * std::cos(a), 0, R * std::sin(a)));
+    d.radius.push_back(1 * scale);
+    d.edges.push_back({prev, static_cast<int32_t>(d.points.size()) - 1});
+    prev = static_cast<int32_t>(d.points.size()) - 1;
+  }
+  run(d, prev, d.points[prev] + Vec3(10 * scale, 0, 0), 5, 1 * scale);
+  return d;
+}
+/// A straight tube of radius r and length `length` radii with points every 0.5 radius.
+inline CenterlineData straight(double length_radii, double scale) {
+  CenterlineData d = start(Vec3::Zero(), scale);
+  run(d, 0, Vec3(0, 0, length_radii * scale), static_cast<int>(2 * length_radii), scale);
+  return d;
+}
+
+struct Named {
+  std::string name;
+  CenterlineData (*make)(double scale);
+  int loops;
+};
+inline void PrintTo(const Named& n, std::ostream* os) { *os << n.name; }
+
+/// Every joint kind the surface must handle (paper Fig. 9: large radius with high curvature, and a
+/// small branching angle with a large radius).
+inline std::vector<Named> joint_kinds() {
+  return {
+      {"bifurcation", bifurcation, 0},
+      {"trifurcation", trifurcation, 0},
+      {"six_way", six_way, 0},
+      {"backward_branch", backward_branch, 0},
+      {"two_parents", two_parents, 0},
+      {"loop", loop, 1},
+      {"tiny_angle_5deg", [](double s) { return tiny_angle(5, s); }, 0},
+      {"short_segment", short_segment, 0},
+      {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
+      {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
+      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
+  };
+}
+
+}  // namespace vesselmesh::fixtures

@@ -1,0 +1,139 @@
+// The command-line tool as a user runs it: `vesselmesh info --json` reports the counts each shared data
+// set's SOURCE.md gives, and bad input exits non-zero with a message naming the file.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "test_support.hpp"
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun run_cli(const std::string& args) {
+  const std::string command = std::string(VESSELMESH_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  CliRun run{-1, ""};
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return run;
+}
+
+nlohmann::json info_json(const std::string& path) {
+  const CliRun run = run_cli("info --json '" + path + "'");
+  EXPECT_EQ(run.status, 0) << run.output;
+  return nlohmann::json::parse(run.output);
+}
+
+struct Expected {
+  const char* file;
+  int points, edges, components, branches, joints, loops, max_degree;
+};
+void PrintTo(const Expected& x, std::ostream* os) { *os << x.file; }
+
+// Counts after normalisation, from each set's SOURCE.md (for VMTK: "after merging exactly-coincident
+// points"; for the mesentery: the simple graph, its one parallel duplicate segment dropped).
+const Expected kSharedSets[] = {
+    {"secomb-rat-cortex-50/network.vtk", 49, 50, 2, 26, 13, 3, 4},
+    {"vmtk-aorta-centerline/aorta-centerline.vtp", 346, 345, 1, 3, 1, 0, 3},
+    {"vmtk-aorta-centerline/aorta-centerline-branches.vtp", 350, 349, 1, 3, 1, 0, 3},
+    {"vascpy-mouse-vessels/penetrating_artery.vtk", 1274, 1273, 1, 1, 0, 0, 2},
+    {"vascpy-mouse-vessels/test_smaller_vasculature.vtk", 912, 897, 15, 27, 6, 0, 3},
+    {"brava-bg0003/BG0003_ColorCoded.CNG.swc", 3470, 3469, 1, 219, 109, 0, 3},
+    {"human-brain-arteries/arteries_smooth.vtk", 12709, 12708, 1, 291, 145, 0, 3},
+    {"secomb-rat-mesentery/network.vtk", 972, 1129, 1, 543, 350, 158, 3},
+    {"vesselgraph-demo/vertices.csv", 3197, 3249, 1, 3227, 1627, 53, 5},
+    {"neuron-hemibrain-da1/1734350788.swc", 4465, 4464, 1, 1217, 599, 0, 5},
+};
+
+}  // namespace
+
+class SharedSet : public testing::TestWithParam<Expected> {};
+
+TEST_P(SharedSet, InfoJsonReportsTheCountsOfItsSourceMd) {
+  const Expected& x = GetParam();
+  SHARED_DATA_OR_SKIP(path, x.file);
+  const nlohmann::json j = info_json(path);
+  EXPECT_EQ(j["points"], x.points);
+  EXPECT_EQ(j["edges"], x.edges);
+  EXPECT_EQ(j["components"], x.components);
+  EXPECT_EQ(j["branches"], x.branches);
+  EXPECT_EQ(j["joints"], x.joints);
+  EXPECT_EQ(j["loops"], x.loops);
+  EXPECT_EQ(j["max_degree"], x.max_degree);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, SharedSet, testing::ValuesIn(kSharedSets), [](const auto& info) {
+  std::string name = info.param.file;
+  for (char& c : name)
+    if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+});
+
+TEST(Cli, VmtkOverlapIsReportedAsMergedPointsAndDroppedEdges) {
+  SHARED_DATA_OR_SKIP(path, "vmtk-aorta-centerline/aorta-centerline.vtp");
+  const nlohmann::json n = info_json(path)["normalisation"];
+  EXPECT_EQ(n["input_points"], 409);
+  EXPECT_EQ(n["merged_points"], 63);
+  EXPECT_EQ(n["zero_length_edges"], 1);
+  EXPECT_EQ(n["duplicate_edges"], 61);
+}
+
+TEST(Cli, MesenteryParallelSegmentIsReportedAsADuplicateEdge) {
+  SHARED_DATA_OR_SKIP(path, "secomb-rat-mesentery/network.vtk");
+  EXPECT_EQ(info_json(path)["normalisation"]["duplicate_edges"], 1);
+}
+
+TEST(Cli, InfoJsonOnTheProjectsOwnFixtureHasTheRequiredKeys) {
+  const nlohmann::json j = info_json(vesselmesh::test::test_data("bifurcation.swc"));
+  for (const char* key : {"points", "edges", "components", "branches", "joints", "loops"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["branches"], 3);
+}
+
+TEST(Cli, InfoTextNamesTheFile) {
+  const std::string path = vesselmesh::test::test_data("ring_with_tail.vtk");
+  const CliRun run = run_cli("info '" + path + "'");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_NE(run.output.find("ring_with_tail.vtk"), std::string::npos);
+  EXPECT_NE(run.output.find("loops       1"), std::string::npos) << run.output;
+}
+
+TEST(Cli, MalformedInputExitsNonZeroWithTheFileAndLine) {
+  const std::string path = testing::TempDir() + "truncated.swc";
+  std::ofstream(path) << "1 1 0 0 0 1 -1\n2 1 0 0 1\n";
+  const CliRun run = run_cli("info '" + path + "'");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("truncated.swc: line 2"), std::string::npos) << run.output;
+}
+
+TEST(Cli, MissingFileAndUnknownFormatExitNonZero) {
+  EXPECT_NE(run_cli("info /nonexistent/file.swc").status, 0);
+  const std::string path = testing::TempDir() + "network.xyz";
+  std::ofstream(path) << "hello\n";
+  const CliRun run = run_cli("info '" + path + "'");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("unknown format"), std::string::npos) << run.output;
+}
+
+TEST(Cli, SynthWritesANetworkThatInfoReadsBack) {
+  const std::string path = testing::TempDir() + "synth.vtk";
+  for (const char* binary : {"", " --binary"}) {
+    const CliRun run = run_cli("synth -o '" + path + "' --sections 3000 --loops 3 --seed 5" + binary);
+    ASSERT_EQ(run.status, 0) << run.output;
+    const nlohmann::json j = info_json(path);
+    EXPECT_NEAR(j["points"].get<double>(), 3000, 300);
+    EXPECT_EQ(j["loops"], 3);
+    EXPECT_EQ(j["components"], 1);
+  }
+}

@@ -1,0 +1,155 @@
+// Normalisation and topology of the centerline graph, on small graphs drawn in comments.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "vesselmesh/graph/centerline_graph.hpp"
+
+using namespace vesselmesh;
+
+namespace {
+
+CenterlineData polyline(std::vector<Vec3> points, double r = 1.0) {
+  CenterlineData d;
+  d.points = std::move(points);
+  d.radius.assign(d.points.size(), r);
+  for (int32_t i = 0; i + 1 < static_cast<int32_t>(d.points.size()); ++i) d.edges.push_back({i, i + 1});
+  return d;
+}
+
+//        3
+//        |
+//  0 --- 1 --- 2          a Y: one joint (1), three terminals, three branches
+CenterlineData y_shape() {
+  CenterlineData d;
+  d.points = {{0, 0, 0}, {10, 0, 0}, {20, 0, 0}, {10, 10, 0}};
+  d.radius = {1, 1, 1, 0.5};
+  d.edges = {{0, 1}, {1, 2}, {1, 3}};
+  return d;
+}
+
+}  // namespace
+
+TEST(Graph, YShapeHasOneJointThreeTerminalsThreeBranches) {
+  const CenterlineGraph g = build_graph(y_shape());
+  EXPECT_EQ(g.points.size(), 4u);
+  EXPECT_EQ(g.components, 1);
+  EXPECT_EQ(g.joints(), 1);
+  EXPECT_EQ(g.terminals(), 3);
+  EXPECT_EQ(g.branches.size(), 3u);
+  EXPECT_EQ(g.max_degree(), 3);
+  EXPECT_EQ(g.loops, 0);
+  for (const Branch& b : g.branches) EXPECT_EQ(b.points.size(), b.edges.size() + 1);
+}
+
+TEST(Graph, ChainOfDegreeTwoPointsIsOneBranch) {
+  const CenterlineGraph g = build_graph(polyline({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {4, 0, 0}}));
+  ASSERT_EQ(g.branches.size(), 1u);
+  EXPECT_EQ(g.branches[0].points.size(), 5u);
+  EXPECT_EQ(g.terminals(), 2);
+  EXPECT_EQ(g.joints(), 0);
+}
+
+//  0 --- 1
+//  |     |      a ring of degree-2 points: one branch that closes on itself, one loop
+//  3 --- 2
+TEST(Graph, RingIsOneClosedBranchAndOneLoop) {
+  CenterlineData d = polyline({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  d.edges.push_back({3, 0});
+  const CenterlineGraph g = build_graph(d);
+  ASSERT_EQ(g.branches.size(), 1u);
+  EXPECT_EQ(g.branches[0].points.front(), g.branches[0].points.back());
+  EXPECT_EQ(g.branches[0].edges.size(), 4u);
+  EXPECT_EQ(g.loops, 1);
+  EXPECT_EQ(g.terminals(), 0);
+}
+
+TEST(Graph, LoopsAreTheCycleRankOverComponents) {
+  // Two components: a square with a diagonal (2 loops) and a separate segment (0 loops).
+  CenterlineData d;
+  d.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {5, 5, 5}, {6, 5, 5}};
+  d.radius.assign(6, 0.1);
+  d.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {4, 5}};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.components, 2);
+  EXPECT_EQ(g.loops, 2);
+  EXPECT_EQ(g.roots.size(), 2u);
+}
+
+TEST(Graph, CoincidentPointsMergeAndTheSharedTrunkEdgesCollapse) {
+  // Two overlapping polylines as VMTK writes them: both repeat the trunk 0-1-2, then diverge.
+  CenterlineData d;
+  d.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 1, 0},     // first line
+              {0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, -1, 0}};   // second line, same trunk
+  d.radius.assign(8, 0.2);
+  d.edges = {{0, 1}, {1, 2}, {2, 3}, {4, 5}, {5, 6}, {6, 7}};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.merged_points, 3);
+  EXPECT_EQ(g.report.duplicate_edges, 2);
+  EXPECT_EQ(g.points.size(), 5u);
+  EXPECT_EQ(g.edges.size(), 4u);
+  EXPECT_EQ(g.joints(), 1);
+  EXPECT_EQ(g.branches.size(), 3u);
+  EXPECT_EQ(g.loops, 0);
+}
+
+TEST(Graph, ZeroLengthEdgeIsDroppedAndReported) {
+  CenterlineData d = polyline({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 0, 0}});
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.zero_length_edges, 1);
+  EXPECT_EQ(g.edges.size(), 2u);
+  EXPECT_EQ(g.branches.size(), 1u);
+}
+
+TEST(Graph, MergeToleranceIsRelativeToTheRadius) {
+  // The same geometry at micrometre and at metre scale: points 1e-7 r apart merge, 1e-4 r apart do not.
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    CenterlineData d = polyline({{0, 0, 0}, {1e-7 * scale, 0, 0}, {1 * scale, 0, 0}, {(1 + 1e-4) * scale, 0, 0}},
+                                scale);
+    const CenterlineGraph g = build_graph(d);
+    EXPECT_EQ(g.report.merged_points, 1) << "scale " << scale;
+    EXPECT_EQ(g.points.size(), 3u) << "scale " << scale;
+  }
+}
+
+TEST(Graph, IsolatedPointsAreDroppedAndReported) {
+  CenterlineData d = polyline({{0, 0, 0}, {1, 0, 0}});
+  d.points.push_back({7, 7, 7});
+  d.radius.push_back(1.0);
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.isolated_points, 1);
+  EXPECT_EQ(g.points.size(), 2u);
+}
+
+TEST(Graph, PerEdgeRadiusGivesEachEdgeItsOwnEndsAndJointsTheWidest) {
+  CenterlineData d = y_shape();
+  d.radius.clear();
+  d.edge_radius = {2.0, 1.5, 0.5};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_TRUE(g.radius_per_edge);
+  const int32_t joint = static_cast<int32_t>(std::find_if(g.points.begin(), g.points.end(), [](const Vec3& p) {
+                                               return p == Vec3(10, 0, 0);
+                                             }) - g.points.begin());
+  EXPECT_DOUBLE_EQ(g.radius[joint], 2.0);
+  for (std::size_t e = 0; e < g.edges.size(); ++e) EXPECT_EQ(g.end_radius[e][0], g.end_radius[e][1]);
+}
+
+TEST(Graph, RootIsTheFileRootElseTheWidestTerminal) {
+  CenterlineData d = y_shape();
+  d.radius = {1, 1, 2, 0.5};  // terminal 2 is the widest
+  EXPECT_EQ(build_graph(d).points[build_graph(d).roots[0]], Vec3(20, 0, 0));
+  d.roots = {3};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.points[g.roots[0]], Vec3(10, 10, 0));
+}
+
+TEST(Graph, SixWayJointIsOnePointOfDegreeSix) {
+  CenterlineData d;
+  d.points = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  d.radius.assign(7, 0.1);
+  for (int32_t i = 1; i <= 6; ++i) d.edges.push_back({0, i});
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.max_degree(), 6);
+  EXPECT_EQ(g.branches.size(), 6u);
+  EXPECT_EQ(g.terminals(), 6);
+}

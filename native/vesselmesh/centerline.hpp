@@ -1,0 +1,29 @@
+#pragma once
+// A centerline as a file gives it: points with radii, joined by edges. This is what every reader
+// returns and what the graph stage takes in. Units are the file's own; nothing assumes a scale.
+
+#include <Eigen/Geometry>  // Vec3 users need cross()
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vesselmesh {
+
+using Vec3 = Eigen::Vector3d;
+using Edge = std::array<int32_t, 2>;
+
+struct CenterlineData {
+  std::vector<Vec3> points;         ///< N positions
+  std::vector<double> radius;       ///< N radii; empty when the radius is given per edge
+  std::vector<Edge> edges;          ///< E pairs of point indices
+  std::vector<double> edge_radius;  ///< E radii, constant along each edge; empty when given per point
+  std::vector<int32_t> roots;       ///< points the file marks as roots (SWC parent -1); may be empty
+};
+
+/// Throws InputError naming `source` and the first offending element unless `data` is a usable
+/// centerline: at least one edge, finite coordinates, radii finite and positive, given either per
+/// point (N values) or per edge (E values) but not both, edge and root indices in range.
+void validate(const CenterlineData& data, const std::string& source);
+
+}  // namespace vesselmesh

@@ -1,0 +1,126 @@
+#pragma once
+// A bounding-volume hierarchy over axis-aligned boxes: nodes in one flat array (depth-first order, the
+// first child right after its parent), split at the median of the boxes' centres along their longest
+// spread. Used for overlapping triangle pairs and for nearest and containing centerline pieces.
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "vesselmesh/centerline.hpp"
+
+namespace vesselmesh {
+
+struct Box {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+
+  void extend(const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void extend(const Box& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
+  /// Closed boxes: touching counts as overlapping.
+  bool overlaps(const Box& b) const {
+    return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
+  }
+  /// Distance from `p` outside the box; minus the distance to the nearest face inside it. A lower
+  /// bound of the signed distance to any solid inside the box.
+  double signed_distance(const Vec3& p) const;
+};
+
+class Bvh {
+ public:
+  explicit Bvh(const std::vector<Box>& boxes);
+
+  /// Calls f(i, j) once for every unordered pair of distinct items whose boxes overlap.
+  template <class F>
+  void for_each_overlapping_pair(F&& f) const;
+
+  /// Depth-first walk that enters the nodes and visits the items whose box has bound(box) <= limit,
+  /// the child with the smaller bound first. `limit` is read again at every step, so that `visit` may
+  /// lower it (a nearest search).
+  template <class Bound, class Visit>
+  void search(Bound&& bound, const double& limit, Visit&& visit) const;
+
+ private:
+  struct Node {
+    Box box;
+    int32_t begin = 0, end = 0;  ///< its items: items_[begin, end)
+    int32_t second = -1;         ///< the second child; -1 for a leaf (the first child is the next node)
+  };
+  int32_t build(const std::vector<Box>& boxes, const std::vector<Vec3>& centres, int32_t begin, int32_t end);
+  bool leaf(const Node& n) const { return n.second < 0; }
+
+  std::vector<int32_t> items_;  ///< item ids in leaf order
+  std::vector<Box> boxes_;      ///< boxes_[k] is the box of items_[k]
+  std::vector<Node> nodes_;
+};
+
+template <class F>
+void Bvh::for_each_overlapping_pair(F&& f) const {
+  if (nodes_.empty()) return;
+  auto leaf_pairs = [&](const Node& a, const Node& b) {
+    for (int32_t i = a.begin; i < a.end; ++i)
+      for (int32_t j = (&a == &b ? i + 1 : b.begin); j < b.end; ++j)
+        if (boxes_[i].overlaps(boxes_[j])) f(items_[i], items_[j]);
+  };
+  std::vector<std::pair<int32_t, int32_t>> stack = {{0, 0}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const Node& na = nodes_[a];
+    const Node& nb = nodes_[b];
+    if (a == b) {
+      if (leaf(na)) {
+        leaf_pairs(na, na);
+      } else {
+        stack.push_back({a + 1, a + 1});
+        stack.push_back({na.second, na.second});
+        stack.push_back({a + 1, na.second});
+      }
+    } else if (na.box.overlaps(nb.box)) {
+      if (leaf(na) && leaf(nb)) {
+        leaf_pairs(na, nb);
+      } else if (leaf(nb) || (!leaf(na) && na.end - na.begin >= nb.end - nb.begin)) {
+        stack.push_back({a + 1, b});
+        stack.push_back({na.second, b});
+      } else {
+        stack.push_back({a, b + 1});
+        stack.push_back({a, nb.second});
+      }
+    }
+  }
+}
+
+template <class Bound, class Visit>
+void Bvh::search(Bound&& bound, const double& limit, Visit&& visit) const {
+  if (nodes_.empty()) return;
+  // Median splits keep the depth within log2 of the item count, so the stack never holds more than
+  // one entry per level plus one.
+  std::array<std::pair<int32_t, double>, 64> stack;
+  int top = 0;
+  stack[top++] = {0, bound(nodes_[0].box)};
+  while (top > 0) {
+    const auto [index, node_bound] = stack[--top];
+    if (node_bound > limit) continue;
+    const Node& n = nodes_[index];
+    if (leaf(n)) {
+      for (int32_t k = n.begin; k < n.end; ++k)
+        if (bound(boxes_[k]) <= limit) visit(items_[k]);
+      continue;
+    }
+    std::pair<int32_t, double> near{index + 1, bound(nodes_[index + 1].box)};
+    std::pair<int32_t, double> far{n.second, bound(nodes_[n.second].box)};
+    if (far.second < near.second) std::swap(near, far);
+    if (far.second <= limit) stack[top++] = far;
+    if (near.second <= limit) stack[top++] = near;
+  }
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,513 @@
+#include "vesselmesh/check/check_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <stdexcept>
+#include <utility>
+
+#include "vesselmesh/check/bvh.hpp"
+#include "vesselmesh/geometry/predicates.hpp"
+#include "vesselmesh/graph/union_find.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDegenerateArea = 1e-14;  // area / (longest edge)² below which a face has no area
+constexpr double kNearTube = 1.5;          // a point is near a centerline edge within this many local radii
+constexpr double kJointReach = 3.0;        // radii round a shared joint where two branches merely meet
+constexpr std::size_t kMaxExamples = 20;
+
+void require_valid_indices(const TriMesh& mesh) {
+  const auto n = static_cast<int64_t>(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int32_t v : mesh.faces[f])
+      if (v < 0 || v >= n)
+        throw std::invalid_argument("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                                    " of a mesh with " + std::to_string(n) + " vertices");
+}
+
+Triangle corners(const TriMesh& mesh, const Tri& f) {
+  return {mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]};
+}
+
+bool repeats_vertex(const Tri& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; }
+
+// Measured against the longest edge, so that the test does not depend on the mesh's units.
+bool has_no_area(const Triangle& t) {
+  const double longest =
+      std::max({(t[1] - t[0]).squaredNorm(), (t[2] - t[1]).squaredNorm(), (t[0] - t[2]).squaredNorm()});
+  const double area = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
+  return !(area >= kDegenerateArea * longest) || longest == 0;
+}
+
+Distribution distribution(std::vector<double> values) {
+  Distribution d;
+  if (values.empty()) return d;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  auto quantile = [&](double q) {
+    const double x = q * static_cast<double>(n - 1);
+    const std::size_t i = static_cast<std::size_t>(x);
+    return i + 1 < n ? values[i] + (x - static_cast<double>(i)) * (values[i + 1] - values[i]) : values[i];
+  };
+  d.min = values.front();
+  d.max = values.back();
+  d.median = quantile(0.5);
+  d.p95 = quantile(0.95);
+  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(n);
+  d.count = static_cast<int64_t>(n);
+  return d;
+}
+
+// --- the centerline as round cones ----------------------------------------------------------------
+
+/// One centerline edge: spheres of radius r0, r1 round c0, c1 and the cone tangent to both.
+struct Cone {
+  Vec3 c0, c1;
+  double r0, r1;
+  int32_t branch;
+  double radius_at(double s) const { return r0 + s * (r1 - r0); }
+  Vec3 point_at(double s) const { return c0 + s * (c1 - c0); }
+};
+
+struct ConeDistance {
+  double distance;  ///< signed: negative inside
+  double radius;    ///< of the sphere of the cone's family (centres on the axis, radii linear) touching
+                    ///< the surface where the point is closest
+};
+
+ConeDistance cone_distance(const Cone& k, const Vec3& p) {
+  const double length = (k.c1 - k.c0).norm();
+  if (length <= std::abs(k.r0 - k.r1)) {  // one end sphere holds the other
+    return k.r0 >= k.r1 ? ConeDistance{(p - k.c0).norm() - k.r0, k.r0}
+                        : ConeDistance{(p - k.c1).norm() - k.r1, k.r1};
+  }
+  // In the half-plane of p and the axis, with t along the axis from c0 and ρ away from it, the side
+  // of the cone is the segment from r0·n to (L, 0) + r1·n with outward normal n = (sinφ, cosφ).
+  const Vec3 axis = (k.c1 - k.c0) / length;
+  const Vec3 d = p - k.c0;
+  const double t = d.dot(axis);
+  const double rho = (d - t * axis).norm();
+  const double sin_phi = (k.r0 - k.r1) / length;
+  const double cos_phi = std::sqrt(1.0 - sin_phi * sin_phi);
+  const double along = t * cos_phi - rho * sin_phi;  // position along the side, 0 where it leaves sphere 0
+  const double side_length = length * cos_phi;
+  if (along <= 0) return {std::hypot(t, rho) - k.r0, k.r0};
+  if (along >= side_length) return {std::hypot(t - length, rho) - k.r1, k.r1};
+  return {t * sin_phi + rho * cos_phi - k.r0, k.radius_at(along / side_length)};
+}
+
+// Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
+std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  if (a == 0) return {0.0, e == 0 ? 0.0 : unit(f / e)};
+  const double c = d1.dot(r);
+  if (e == 0) return {unit(-c / a), 0.0};
+  const double b = d1.dot(d2), denominator = a * e - b * b;
+  double s = denominator > 0 ? unit((b * f - c * e) / denominator) : 0.0;  // parallel: any s will do
+  const double t = (b * s + f) / e;
+  if (t < 0) return {unit(-c / a), 0.0};
+  if (t > 1) return {unit((b - c) / a), 1.0};
+  return {s, t};
+}
+
+struct Ball {
+  Vec3 centre;
+  double radius;
+};
+
+// The parameter intervals of segment c0 → c1 that lie outside every ball.
+std::vector<std::array<double, 2>> outside_balls(const Vec3& c0, const Vec3& c1,
+                                                 const std::vector<Ball>& balls) {
+  std::vector<std::array<double, 2>> pieces = {{0.0, 1.0}};
+  const Vec3 d = c1 - c0;
+  const double a = d.squaredNorm();
+  for (const Ball& ball : balls) {
+    const Vec3 m = c0 - ball.centre;
+    const double b = d.dot(m), discriminant = b * b - a * (m.squaredNorm() - ball.radius * ball.radius);
+    if (a == 0 || discriminant <= 0) continue;
+    const double enter = (-b - std::sqrt(discriminant)) / a, leave = (-b + std::sqrt(discriminant)) / a;
+    std::vector<std::array<double, 2>> kept;
+    for (const auto& [lo, hi] : pieces) {
+      if (std::min(hi, enter) > lo) kept.push_back({lo, std::min(hi, enter)});
+      if (hi > std::max(lo, leave)) kept.push_back({std::max(lo, leave), hi});
+    }
+    pieces = std::move(kept);
+  }
+  return pieces;
+}
+
+std::vector<Cone> round_cones(const CenterlineGraph& g) {
+  std::vector<int32_t> branch_of(g.edges.size(), -1);
+  for (std::size_t b = 0; b < g.branches.size(); ++b)
+    for (int32_t e : g.branches[b].edges) branch_of[e] = static_cast<int32_t>(b);
+  std::vector<Cone> cones(g.edges.size());
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    cones[e] = {g.points[g.edges[e][0]], g.points[g.edges[e][1]], g.end_radius[e][0], g.end_radius[e][1],
+                branch_of[e]};
+  return cones;
+}
+
+// Each cone's box, wide enough to hold the whole neighbourhood that counts as near it.
+std::vector<Box> near_boxes(const std::vector<Cone>& cones) {
+  std::vector<Box> boxes(cones.size());
+  for (std::size_t e = 0; e < cones.size(); ++e) {
+    const Vec3 margin = Vec3::Constant(kNearTube * std::max(cones[e].r0, cones[e].r1));
+    boxes[e].extend(cones[e].c0 - margin);
+    boxes[e].extend(cones[e].c0 + margin);
+    boxes[e].extend(cones[e].c1 - margin);
+    boxes[e].extend(cones[e].c1 + margin);
+  }
+  return boxes;
+}
+
+class RoundCones {
+ public:
+  explicit RoundCones(const CenterlineGraph& g)
+      : graph_(g), cones_(round_cones(g)), bvh_(near_boxes(cones_)) {}
+
+  /// The smallest signed distance from `p` to any cone, with that cone's local radius.
+  ConeDistance nearest(const Vec3& p) const {
+    ConeDistance best{kInf, 0.0};
+    // A cone inside a box is no nearer than the box's signed distance.
+    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, best.distance,
+                [&](int32_t e) {
+                  const ConeDistance d = cone_distance(cones_[e], p);
+                  if (d.distance < best.distance) best = d;
+                });
+    return best;
+  }
+
+  /// True when `p` and `q` are near edges of two different branches whose tubes overlap.
+  bool in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
+    const std::vector<int32_t> near_p = near_edges(p), near_q = near_edges(q);
+    for (int32_t e : near_p)
+      for (int32_t f : near_q)
+        if (cones_[e].branch != cones_[f].branch && overlap(e, f)) return true;
+    return false;
+  }
+
+ private:
+  std::vector<int32_t> near_edges(const Vec3& p) const {
+    std::vector<int32_t> near;
+    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
+                [&](int32_t e) {
+                  const Cone& k = cones_[e];
+                  const double s = closest_parameters(k.c0, k.c1, p, p).first;
+                  if ((p - k.point_at(s)).norm() < kNearTube * k.radius_at(s)) near.push_back(e);
+                });
+    return near;
+  }
+
+  // Whether the tubes of edges e and f (of different branches) overlap away from the joints their
+  // branches share: near a shared joint they meet by design, which is no overlap of the input.
+  bool overlap(int32_t e, int32_t f) const {
+    const Branch& a = graph_.branches[cones_[e].branch];
+    const Branch& b = graph_.branches[cones_[f].branch];
+    std::vector<Ball> joints;
+    const std::array<int32_t, 2> ends = {a.points.front(), a.points.back()};  // the same point for a ring
+    for (int i = 0; i < (ends[1] == ends[0] ? 1 : 2); ++i)
+      if (ends[i] == b.points.front() || ends[i] == b.points.back())
+        joints.push_back({graph_.points[ends[i]], kJointReach * graph_.radius[ends[i]]});
+    const Cone& k = cones_[e];
+    const Cone& l = cones_[f];
+    for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))
+      for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
+        const auto [u, v] =
+            closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
+        const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
+        if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t)) return true;
+      }
+    return false;
+  }
+
+  const CenterlineGraph& graph_;
+  std::vector<Cone> cones_;
+  Bvh bvh_;
+};
+
+// --- terminal caps --------------------------------------------------------------------------------
+
+/// The end of a terminal: its centre, the axis pointing out of the tube, and the radius there.
+struct Cap {
+  Vec3 centre, axis;
+  double radius;
+};
+
+std::vector<Cap> terminal_caps(const CenterlineGraph& g) {
+  std::vector<Cap> caps;
+  for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v) {
+    if (g.degree(v) != 1) continue;
+    const int32_t e = g.incident[g.offsets[v]];
+    const Vec3 axis = (g.points[v] - g.points[g.other(e, v)]).normalized();
+    caps.push_back({g.points[v], axis, g.end_radius[e][g.edges[e][0] == v ? 0 : 1]});
+  }
+  return caps;
+}
+
+std::vector<Box> cap_boxes(const std::vector<Cap>& caps) {
+  std::vector<Box> boxes(caps.size());
+  for (std::size_t i = 0; i < caps.size(); ++i) {
+    boxes[i].extend(caps[i].centre - Vec3::Constant(2 * caps[i].radius));
+    boxes[i].extend(caps[i].centre + Vec3::Constant(2 * caps[i].radius));
+  }
+  return boxes;
+}
+
+class TerminalCaps {
+ public:
+  explicit TerminalCaps(const CenterlineGraph& g) : caps_(terminal_caps(g)), bvh_(cap_boxes(caps_)) {}
+
+  /// Within 2 radii of a terminal, and less than a radius behind its section (or beyond it).
+  bool contain(const Vec3& p) const {
+    bool inside = false;
+    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
+                [&](int32_t i) {
+                  const Vec3 d = p - caps_[i].centre;
+                  inside =
+                      inside || (d.norm() < 2 * caps_[i].radius && d.dot(caps_[i].axis) > -caps_[i].radius);
+                });
+    return inside;
+  }
+
+ private:
+  std::vector<Cap> caps_;
+  Bvh bvh_;
+};
+
+nlohmann::ordered_json distribution_json(const Distribution& d) {
+  nlohmann::ordered_json j;
+  j["min"] = d.min;
+  j["median"] = d.median;
+  j["p95"] = d.p95;
+  j["max"] = d.max;
+  j["mean"] = d.mean;
+  j["count"] = d.count;
+  return j;
+}
+
+}  // namespace
+
+TopologyReport check_topology(const TriMesh& mesh) {
+  require_valid_indices(mesh);
+  const std::vector<Tri>& faces = mesh.faces;
+  const auto face_count = static_cast<int32_t>(faces.size());
+  TopologyReport r;
+  r.faces = face_count;
+
+  // The volume is taken about the middle of the vertices, which keeps the products small.
+  Box bounds;
+  for (const Vec3& p : mesh.vertices) bounds.extend(p);
+  const Vec3 origin = 0.5 * (bounds.lo + bounds.hi);
+
+  // One half-edge per corner, from faces[face][corner] to the next corner, keyed by its undirected
+  // edge: sorting brings the faces of each edge together.
+  struct HalfEdge {
+    uint64_t edge;
+    int32_t face, corner;
+  };
+  std::vector<HalfEdge> half;
+  half.reserve(3 * faces.size());
+  UnionFind components(mesh.vertices.size());
+  std::vector<char> used(mesh.vertices.size(), 0);
+  int64_t valid_faces = 0;
+  for (int32_t f = 0; f < face_count; ++f) {
+    const Tri& face = faces[f];
+    if (repeats_vertex(face)) {
+      ++r.degenerate_faces;
+      continue;
+    }
+    const Triangle t = corners(mesh, face);
+    if (has_no_area(t)) ++r.degenerate_faces;
+    ++valid_faces;
+    r.signed_volume += (t[0] - origin).dot((t[1] - origin).cross(t[2] - origin)) / 6.0;
+    for (int32_t k = 0; k < 3; ++k) {
+      const auto a = static_cast<uint32_t>(face[k]), b = static_cast<uint32_t>(face[(k + 1) % 3]);
+      half.push_back({uint64_t{std::min(a, b)} << 32 | std::max(a, b), f, k});
+      used[a] = 1;
+    }
+    components.unite(face[0], face[1]);
+    components.unite(face[1], face[2]);
+  }
+  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.edge < y.edge; });
+
+  // Corners (3·face + corner) at one vertex are joined when their faces share an edge there; each
+  // resulting set is one fan of faces round the vertex.
+  auto start = [&](const HalfEdge& h) { return faces[h.face][h.corner]; };
+  auto corner_at = [&](const HalfEdge& h, int32_t v) {
+    return 3 * h.face + (start(h) == v ? h.corner : (h.corner + 1) % 3);
+  };
+  UnionFind fans(3 * faces.size());
+  for (std::size_t first = 0, end = 0; first < half.size(); first = end) {
+    while (end < half.size() && half[end].edge == half[first].edge) ++end;
+    ++r.edges;
+    const std::size_t count = end - first;
+    if (count == 1)
+      ++r.boundary_edges;
+    else if (count > 2)
+      ++r.non_manifold_edges;
+    else if (start(half[first]) == start(half[first + 1]))
+      ++r.inconsistent_edges;
+    const auto lo = static_cast<int32_t>(half[first].edge >> 32);
+    const auto hi = static_cast<int32_t>(half[first].edge & 0xffffffffu);
+    for (std::size_t h = first + 1; h < end; ++h) {
+      fans.unite(corner_at(half[first], lo), corner_at(half[h], lo));
+      fans.unite(corner_at(half[first], hi), corner_at(half[h], hi));
+    }
+  }
+  std::vector<int32_t> fan_count(mesh.vertices.size(), 0);
+  for (int32_t f = 0; f < face_count; ++f)
+    if (!repeats_vertex(faces[f]))
+      for (int32_t k = 0; k < 3; ++k)
+        if (fans.find(3 * f + k) == 3 * f + k) ++fan_count[faces[f][k]];
+  r.non_manifold_vertices =
+      std::count_if(fan_count.begin(), fan_count.end(), [](int32_t n) { return n > 1; });
+
+  for (std::size_t v = 0; v < used.size(); ++v) {
+    if (!used[v]) continue;
+    ++r.vertices;
+    if (components.find(static_cast<int32_t>(v)) == static_cast<int32_t>(v)) ++r.components;
+  }
+  r.euler_characteristic = r.vertices - r.edges + valid_faces;
+  if (r.closed_manifold()) r.genus = (2 * r.components - r.euler_characteristic) / 2;
+  return r;
+}
+
+IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline) {
+  require_valid_indices(mesh);
+  std::vector<int32_t> face_of;
+  std::vector<Box> boxes;
+  for (int32_t f = 0; f < static_cast<int32_t>(mesh.faces.size()); ++f) {
+    if (repeats_vertex(mesh.faces[f])) continue;
+    const Triangle t = corners(mesh, mesh.faces[f]);
+    if (is_degenerate(t)) continue;
+    Box box;
+    for (const Vec3& p : t) box.extend(p);
+    face_of.push_back(f);
+    boxes.push_back(box);
+  }
+
+  // Pairs sharing an edge or a vertex need no special case: the predicate knows shared corners lie on
+  // the other plane, so such pairs count only when they fold over or cross away from what they share.
+  std::vector<std::array<int32_t, 2>> hits;
+  Bvh(boxes).for_each_overlapping_pair([&](int32_t i, int32_t j) {
+    const int32_t f = face_of[i], g = face_of[j];
+    if (triangle_interiors_meet(corners(mesh, mesh.faces[f]), corners(mesh, mesh.faces[g])))
+      hits.push_back({std::min(f, g), std::max(f, g)});
+  });
+  std::sort(hits.begin(), hits.end());
+
+  IntersectionReport r;
+  r.pairs = static_cast<int64_t>(hits.size());
+  r.examples.assign(hits.begin(),
+                    hits.begin() + static_cast<std::ptrdiff_t>(std::min(hits.size(), kMaxExamples)));
+  if (centerline != nullptr && !hits.empty()) {
+    const RoundCones cones(*centerline);
+    auto centroid = [&](int32_t f) {
+      const Triangle t = corners(mesh, mesh.faces[f]);
+      return Vec3((t[0] + t[1] + t[2]) / 3.0);
+    };
+    for (const auto& [f, g] : hits)
+      r.pairs_in_overlapping_tubes += cones.in_overlapping_tubes(centroid(f), centroid(g));
+  }
+  return r;
+}
+
+QualityReport triangle_quality(const TriMesh& mesh) {
+  require_valid_indices(mesh);
+  QualityReport r;
+  std::vector<double> ratio, angle;
+  ratio.reserve(mesh.faces.size());
+  angle.reserve(mesh.faces.size());
+  for (const Tri& face : mesh.faces) {
+    const Triangle t = corners(mesh, face);
+    if (repeats_vertex(face) || has_no_area(t)) {
+      ++r.degenerate;
+      continue;
+    }
+    const Vec3 e0 = t[1] - t[0], e1 = t[2] - t[1], e2 = t[0] - t[2];
+    const double a = e0.norm(), b = e1.norm(), c = e2.norm();
+    const double twice_area = e0.cross(e1).norm();
+    const double s = 0.5 * (a + b + c);
+    ratio.push_back(a * b * c * s / (twice_area * twice_area));  // abc·s / (4A²)
+    // The smallest angle has the largest cosine; atan2 keeps it accurate when it is tiny.
+    const double largest_dot = std::max({-e0.dot(e2), -e0.dot(e1), -e1.dot(e2)});
+    angle.push_back(std::atan2(twice_area, largest_dot) * 180.0 / M_PI);
+  }
+  r.radius_ratio = distribution(std::move(ratio));
+  r.min_angle = distribution(std::move(angle));
+  return r;
+}
+
+FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline) {
+  FidelityReport r;
+  if (centerline.edges.empty()) return r;
+  const RoundCones cones(centerline);
+  const TerminalCaps caps(centerline);
+  std::vector<double> signed_error, abs_error;
+  for (const Vec3& p : mesh.vertices) {
+    if (caps.contain(p)) {
+      ++r.excluded_cap_vertices;
+      continue;
+    }
+    const ConeDistance d = cones.nearest(p);
+    signed_error.push_back(d.distance / d.radius);
+    abs_error.push_back(std::abs(d.distance / d.radius));
+  }
+  r.relative_error = distribution(std::move(signed_error));
+  r.abs_relative_error = distribution(std::move(abs_error));
+  return r;
+}
+
+CheckReport check_mesh(const TriMesh& mesh, const CenterlineGraph* centerline) {
+  CheckReport report;
+  report.topology = check_topology(mesh);
+  report.intersections = find_self_intersections(mesh, centerline);
+  report.quality = triangle_quality(mesh);
+  if (centerline != nullptr) report.fidelity = radius_fidelity(mesh, *centerline);
+  return report;
+}
+
+std::string report_json(const CheckReport& report, int indent) {
+  using nlohmann::ordered_json;
+  const TopologyReport& t = report.topology;
+  ordered_json j;
+  j["closed_manifold"] = t.closed_manifold();
+  ordered_json& topology = j["topology"];
+  topology["vertices"] = t.vertices;
+  topology["edges"] = t.edges;
+  topology["faces"] = t.faces;
+  topology["boundary_edges"] = t.boundary_edges;
+  topology["non_manifold_edges"] = t.non_manifold_edges;
+  topology["non_manifold_vertices"] = t.non_manifold_vertices;
+  topology["inconsistent_edges"] = t.inconsistent_edges;
+  topology["degenerate_faces"] = t.degenerate_faces;
+  topology["components"] = t.components;
+  topology["euler_characteristic"] = t.euler_characteristic;
+  topology["genus"] = t.genus;
+  topology["signed_volume"] = t.signed_volume;
+  ordered_json& intersections = j["intersections"];
+  intersections["pairs"] = report.intersections.pairs;
+  intersections["pairs_in_overlapping_tubes"] = report.intersections.pairs_in_overlapping_tubes;
+  intersections["examples"] = report.intersections.examples;
+  ordered_json& quality = j["quality"];
+  quality["radius_ratio"] = distribution_json(report.quality.radius_ratio);
+  quality["min_angle"] = distribution_json(report.quality.min_angle);
+  quality["degenerate"] = report.quality.degenerate;
+  if (report.fidelity) {
+    ordered_json& fidelity = j["fidelity"];
+    fidelity["abs_relative_error"] = distribution_json(report.fidelity->abs_relative_error);
+    fidelity["relative_error"] = distribution_json(report.fidelity->relative_error);
+    fidelity["excluded_cap_vertices"] = report.fidelity->excluded_cap_vertices;
+  }
+  return j.dump(indent);
+}
+
+}  // namespace vesselmesh

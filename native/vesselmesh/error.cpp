@@ -1,0 +1,12 @@
+#include "vesselmesh/error.hpp"
+
+namespace vesselmesh {
+
+static std::string compose(const std::string& file, const std::string& where, const std::string& what) {
+  return where.empty() ? file + ": " + what : file + ": " + where + ": " + what;
+}
+
+InputError::InputError(const std::string& file, const std::string& where, const std::string& what)
+    : std::runtime_error(compose(file, where, what)) {}
+
+}  // namespace vesselmesh

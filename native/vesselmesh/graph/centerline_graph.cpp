@@ -1,0 +1,258 @@
+#include "vesselmesh/graph/centerline_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <nlohmann/json.hpp>
+
+#include "vesselmesh/graph/union_find.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+/// Radius of each input point: its own, or for per-edge radii the smallest of its edges (0 when on
+/// no edge, so that it only merges with exact duplicates).
+std::vector<double> point_radius(const CenterlineData& data) {
+  if (!data.radius.empty()) return data.radius;
+  std::vector<double> r(data.points.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t e = 0; e < data.edges.size(); ++e)
+    for (int32_t v : data.edges[e]) r[v] = std::min(r[v], data.edge_radius[e]);
+  for (double& x : r)
+    if (std::isinf(x)) x = 0.0;
+  return r;
+}
+
+/// Representative of every point after merging coincident ones. Points are hashed into cells twice
+/// as large as the largest tolerance, so a point's partners lie in the 2×2×2 cells on its side.
+std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vector<double>& r) {
+  const std::size_t n = data.points.size();
+  UnionFind sets(n);
+  std::vector<int32_t> rep(n);
+  const double cell = 2.0 * kCoincidentFraction * *std::max_element(r.begin(), r.end());
+  if (!(cell > 0.0)) {  // only when every point is on no edge
+    std::iota(rep.begin(), rep.end(), 0);
+    return rep;
+  }
+  using Key = std::array<int64_t, 3>;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      return std::hash<int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
+    }
+  };
+  auto key_of = [&](const Vec3& q) {
+    return Key{static_cast<int64_t>(std::floor(q.x())), static_cast<int64_t>(std::floor(q.y())),
+               static_cast<int64_t>(std::floor(q.z()))};
+  };
+  std::vector<Vec3> scaled(n);
+  std::vector<std::pair<Key, int32_t>> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    scaled[i] = data.points[i] / cell;
+    sorted[i] = {key_of(scaled[i]), static_cast<int32_t>(i)};
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::unordered_map<Key, std::size_t, KeyHash> first;  // cell -> its first entry in `sorted`
+  first.reserve(n);
+  for (std::size_t s = 0; s < n; ++s)
+    if (s == 0 || sorted[s].first != sorted[s - 1].first) first.emplace(sorted[s].first, s);
+  for (std::size_t i = 0; i < n; ++i) {
+    Key base, step;
+    for (int a = 0; a < 3; ++a) {
+      const double f = std::floor(scaled[i][a]);
+      base[a] = static_cast<int64_t>(f);
+      step[a] = scaled[i][a] - f < 0.5 ? -1 : 1;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+      const Key k{base[0] + (corner & 1 ? step[0] : 0), base[1] + (corner & 2 ? step[1] : 0),
+                  base[2] + (corner & 4 ? step[2] : 0)};
+      auto it = first.find(k);
+      if (it == first.end()) continue;
+      for (std::size_t s = it->second; s < n && sorted[s].first == k; ++s) {
+        const int32_t j = sorted[s].second;
+        if (static_cast<std::size_t>(j) <= i) continue;
+        const double tol = kCoincidentFraction * std::min(r[i], r[j]);
+        if ((data.points[i] - data.points[j]).norm() <= tol) sets.unite(static_cast<int32_t>(i), j);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) rep[i] = sets.find(static_cast<int32_t>(i));
+  return rep;
+}
+
+void build_adjacency(CenterlineGraph& g) {
+  const std::size_t n = g.points.size();
+  g.offsets.assign(n + 1, 0);
+  for (const Edge& e : g.edges) ++g.offsets[e[0] + 1], ++g.offsets[e[1] + 1];
+  for (std::size_t v = 0; v < n; ++v) g.offsets[v + 1] += g.offsets[v];
+  g.incident.resize(g.offsets[n]);
+  std::vector<int32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    for (int32_t v : g.edges[e]) g.incident[fill[v]++] = static_cast<int32_t>(e);
+}
+
+void find_components(CenterlineGraph& g) {
+  UnionFind sets(g.points.size());
+  for (const Edge& e : g.edges) sets.unite(e[0], e[1]);
+  g.component.assign(g.points.size(), -1);
+  std::vector<int32_t> id_of_rep(g.points.size(), -1);
+  g.components = 0;
+  for (std::size_t v = 0; v < g.points.size(); ++v) {
+    int32_t rep = sets.find(static_cast<int32_t>(v));
+    if (id_of_rep[rep] < 0) id_of_rep[rep] = g.components++;
+    g.component[v] = id_of_rep[rep];
+  }
+}
+
+/// One root per component: the first root the file names in it, else its widest terminal (ties:
+/// lowest index), else (a ring) its widest point.
+void choose_roots(CenterlineGraph& g, const std::vector<int32_t>& file_roots) {
+  std::vector<int32_t> root(g.components, -1);
+  for (int32_t r : file_roots)
+    if (root[g.component[r]] < 0) root[g.component[r]] = r;
+  auto better = [&](int32_t candidate, int32_t current) {
+    return current < 0 || g.radius[candidate] > g.radius[current];
+  };
+  std::vector<int32_t> widest_terminal(g.components, -1), widest(g.components, -1);
+  for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v) {
+    const int32_t c = g.component[v];
+    if (g.degree(v) == 1 && better(v, widest_terminal[c])) widest_terminal[c] = v;
+    if (better(v, widest[c])) widest[c] = v;
+  }
+  g.roots.resize(g.components);
+  for (int32_t c = 0; c < g.components; ++c)
+    g.roots[c] = root[c] >= 0 ? root[c] : widest_terminal[c] >= 0 ? widest_terminal[c] : widest[c];
+}
+
+void find_branches(CenterlineGraph& g) {
+  std::vector<char> used(g.edges.size(), 0);
+  auto walk = [&](int32_t start, int32_t first_edge) {
+    Branch b;
+    b.points.push_back(start);
+    int32_t v = start, e = first_edge;
+    while (true) {
+      used[e] = 1;
+      b.edges.push_back(e);
+      v = g.other(e, v);
+      b.points.push_back(v);
+      if (g.degree(v) != 2 || v == start) break;
+      const int32_t a = g.incident[g.offsets[v]], c = g.incident[g.offsets[v] + 1];
+      e = a == e ? c : a;
+      if (used[e]) break;
+    }
+    g.branches.push_back(std::move(b));
+  };
+  for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v)
+    if (g.degree(v) != 2)
+      for (int32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+        if (!used[g.incident[k]]) walk(v, g.incident[k]);
+  // What is left are rings of degree-2 points.
+  for (int32_t e = 0; e < static_cast<int32_t>(g.edges.size()); ++e)
+    if (!used[e]) walk(g.edges[e][0], e);
+}
+
+}  // namespace
+
+CenterlineGraph build_graph(const CenterlineData& data) {
+  CenterlineGraph g;
+  NormalisationReport& report = g.report;
+  report.input_points = static_cast<int64_t>(data.points.size());
+  report.input_edges = static_cast<int64_t>(data.edges.size());
+  g.radius_per_edge = data.radius.empty();
+
+  const std::vector<double> r = point_radius(data);
+  const std::vector<int32_t> rep = merge_coincident(data, r);
+  for (std::size_t i = 0; i < rep.size(); ++i) report.merged_points += rep[i] != static_cast<int32_t>(i);
+
+  // Keep the first of parallel edges and drop self-loops; new point ids follow first use by an edge.
+  std::vector<int32_t> new_id(data.points.size(), -1);
+  auto id_of = [&](int32_t original) {
+    int32_t& id = new_id[rep[original]];
+    if (id < 0) {
+      id = static_cast<int32_t>(g.points.size());
+      g.points.push_back(data.points[rep[original]]);
+    }
+    return id;
+  };
+  std::unordered_set<uint64_t> seen;
+  seen.reserve(data.edges.size() * 2);
+  for (std::size_t e = 0; e < data.edges.size(); ++e) {
+    const auto [a, b] = data.edges[e];
+    if (rep[a] == rep[b]) {
+      ++report.zero_length_edges;
+      continue;
+    }
+    const uint64_t lo = std::min(rep[a], rep[b]), hi = std::max(rep[a], rep[b]);
+    if (!seen.insert(lo << 32 | hi).second) {
+      ++report.duplicate_edges;
+      continue;
+    }
+    g.edges.push_back({id_of(a), id_of(b)});
+    g.end_radius.push_back(g.radius_per_edge ? std::array<double, 2>{data.edge_radius[e], data.edge_radius[e]}
+                                             : std::array<double, 2>{data.radius[a], data.radius[b]});
+  }
+  for (std::size_t i = 0; i < rep.size(); ++i)
+    report.isolated_points += rep[i] == static_cast<int32_t>(i) && new_id[i] < 0;
+
+  g.radius.assign(g.points.size(), 0.0);
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    for (int k = 0; k < 2; ++k) g.radius[g.edges[e][k]] = std::max(g.radius[g.edges[e][k]], g.end_radius[e][k]);
+
+  std::vector<int32_t> file_roots;
+  for (int32_t root : data.roots)
+    if (new_id[rep[root]] >= 0) file_roots.push_back(new_id[rep[root]]);
+
+  build_adjacency(g);
+  find_components(g);
+  choose_roots(g, file_roots);
+  find_branches(g);
+  g.loops = static_cast<int64_t>(g.edges.size()) - static_cast<int64_t>(g.points.size()) + g.components;
+  return g;
+}
+
+int64_t CenterlineGraph::joints() const {
+  int64_t n = 0;
+  for (std::size_t v = 0; v + 1 < offsets.size(); ++v) n += degree(static_cast<int32_t>(v)) >= 3;
+  return n;
+}
+
+int64_t CenterlineGraph::terminals() const {
+  int64_t n = 0;
+  for (std::size_t v = 0; v + 1 < offsets.size(); ++v) n += degree(static_cast<int32_t>(v)) == 1;
+  return n;
+}
+
+int32_t CenterlineGraph::max_degree() const {
+  int32_t d = 0;
+  for (std::size_t v = 0; v + 1 < offsets.size(); ++v) d = std::max(d, degree(static_cast<int32_t>(v)));
+  return d;
+}
+
+std::string summary_json(const CenterlineGraph& g, int indent) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& p : g.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  double rmin = std::numeric_limits<double>::infinity(), rmax = 0.0;
+  for (const auto& ends : g.end_radius)
+    for (double x : ends) rmin = std::min(rmin, x), rmax = std::max(rmax, x);
+  const NormalisationReport& r = g.report;
+  nlohmann::ordered_json j;
+  j["points"] = g.points.size();
+  j["edges"] = g.edges.size();
+  j["components"] = g.components;
+  j["branches"] = g.branches.size();
+  j["joints"] = g.joints();
+  j["terminals"] = g.terminals();
+  j["max_degree"] = g.max_degree();
+  j["loops"] = g.loops;
+  j["radius"] = {{"min", rmin}, {"max", rmax}, {"per", g.radius_per_edge ? "edge" : "point"}};
+  j["bbox"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
+  j["normalisation"] = {{"input_points", r.input_points},         {"input_edges", r.input_edges},
+                        {"merged_points", r.merged_points},       {"zero_length_edges", r.zero_length_edges},
+                        {"duplicate_edges", r.duplicate_edges},   {"isolated_points", r.isolated_points}};
+  return j.dump(indent);
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,70 @@
+#pragma once
+// The centerline graph: the readers' CenterlineData normalised (coincident points merged, zero-length
+// and parallel duplicate edges dropped, points on no edge dropped) with its derived topology
+// (degrees, components, branches, joints, terminals, roots, loops). Every later stage works on this.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vesselmesh/centerline.hpp"
+
+namespace vesselmesh {
+
+/// What normalisation changed, so that a user can see it (vesselmesh info).
+struct NormalisationReport {
+  int64_t input_points = 0;
+  int64_t input_edges = 0;
+  int64_t merged_points = 0;      ///< points merged into a coincident point
+  int64_t zero_length_edges = 0;  ///< edges dropped because their two ends coincide
+  int64_t duplicate_edges = 0;    ///< edges dropped because another edge joins the same two points
+  int64_t isolated_points = 0;    ///< points on no edge, dropped
+};
+
+/// A chain of edges between two points of degree other than 2 (or a closed ring of degree-2 points).
+struct Branch {
+  std::vector<int32_t> points;  ///< k+1 points in walking order; a ring repeats its first point at the end
+  std::vector<int32_t> edges;   ///< k edges, edges[i] joins points[i] and points[i+1]
+};
+
+struct CenterlineGraph {
+  std::vector<Vec3> points;                       ///< N positions, no two within the merge tolerance
+  std::vector<Edge> edges;                        ///< E edges, no self-loops, no parallel duplicates
+  std::vector<std::array<double, 2>> end_radius;  ///< E×2: radius at edges[e][0] and at edges[e][1]
+  std::vector<double> radius;                     ///< N: largest radius of the point's edge ends
+  bool radius_per_edge = false;                   ///< the input gave one radius per edge
+
+  // Adjacency in compressed rows: the edges at point v are incident[offsets[v] .. offsets[v+1]).
+  std::vector<int32_t> offsets;   ///< N+1
+  std::vector<int32_t> incident;  ///< 2E edge ids
+
+  // Topology.
+  std::vector<int32_t> component;  ///< N: component id of each point, 0..components-1
+  int32_t components = 0;
+  std::vector<int32_t> roots;      ///< one per component: the file's root, else its widest terminal
+  std::vector<Branch> branches;
+  int64_t loops = 0;               ///< independent loops (cycle rank): E − N + components
+
+  NormalisationReport report;
+
+  int32_t degree(int32_t v) const { return offsets[v + 1] - offsets[v]; }
+  /// The point at the other end of edge `e` from point `v`.
+  int32_t other(int32_t e, int32_t v) const { return edges[e][0] == v ? edges[e][1] : edges[e][0]; }
+  int64_t joints() const;     ///< points of degree ≥ 3
+  int64_t terminals() const;  ///< points of degree 1
+  int32_t max_degree() const;
+};
+
+/// Two points coincide when they are closer than this fraction of the smaller of their radii.
+constexpr double kCoincidentFraction = 1e-6;
+
+/// Normalises `data` (which must have passed validate()) and derives the topology. Linear in the
+/// input apart from one sort of the points.
+CenterlineGraph build_graph(const CenterlineData& data);
+
+/// The figures `vesselmesh info` prints, as JSON text: points, edges, components, branches, joints,
+/// terminals, max_degree, loops, radius {min, max}, bbox {min, max}, normalisation {...}.
+std::string summary_json(const CenterlineGraph& graph, int indent = 2);
+
+}  // namespace vesselmesh

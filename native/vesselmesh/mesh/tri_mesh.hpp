@@ -1,0 +1,28 @@
+#pragma once
+// The triangle mesh that flows between the surface stages (triangulate → curvature → subdivide →
+// write/check): flat arrays, as they cross into Python and Blender without conversion.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vesselmesh/centerline.hpp"
+
+namespace vesselmesh {
+
+using Tri = std::array<int32_t, 3>;
+
+/// A named per-vertex scalar (curvature measures and the like), written to PLY as a float property.
+struct VertexProperty {
+  std::string name;
+  std::vector<float> values;  ///< one per vertex
+};
+
+struct TriMesh {
+  std::vector<Vec3> vertices;                   ///< V positions
+  std::vector<Tri> faces;                       ///< F triangles, counter-clockwise seen from outside
+  std::vector<VertexProperty> vertex_properties;  ///< optional, each with V values
+};
+
+}  // namespace vesselmesh

@@ -1,0 +1,75 @@
+#include "vesselmesh/pipeline.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "vesselmesh/subdivide/loop.hpp"
+#include "vesselmesh/triangulate/triangulate.hpp"
+
+namespace vesselmesh {
+
+double subdivision_radius_scale() {
+  // Mean distance from the axis of the Loop limit surface of a straight four-sided tube, relative to
+  // its control square's corners (test_loop: SquareTubeShrinksToTheKnownMeanRadius).
+  return 1.0 / 0.657;
+}
+
+MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options) {
+  if (options.levels < 0 || options.levels > 4)
+    throw std::invalid_argument("levels must be 0 to 4, got " + std::to_string(options.levels));
+  using Clock = std::chrono::steady_clock;
+  MeshResult result;
+  auto record = [&](const char* stage, Clock::time_point start, int64_t vertices, int64_t faces) {
+    result.stages.push_back({stage, std::chrono::duration<double>(Clock::now() - start).count(), vertices, faces});
+  };
+
+  auto start = Clock::now();
+  TileOptions tile;
+  tile.sampling = options.sampling;
+  tile.caps = options.caps;
+  tile.radius_scale = subdivision_radius_scale();
+  const BaseMesh base = tile_base_mesh(graph, tile);
+  record("tile", start, static_cast<int64_t>(base.vertices.size()),
+         static_cast<int64_t>(base.quads.size() + base.triangles.size()));
+  result.sections = base.sections;
+  result.joint_patches = base.joints;
+  result.absorbed_branches = base.absorbed_branches;
+
+  start = Clock::now();
+  result.mesh = triangulate(base);
+  record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
+         static_cast<int64_t>(result.mesh.faces.size()));
+
+  for (int level = 1; level <= options.levels; ++level) {
+    start = Clock::now();
+    result.mesh = loop_subdivide(result.mesh);
+    record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
+           static_cast<int64_t>(result.mesh.faces.size()));
+  }
+  // Every level's vertices moved onto the limit surface: the radius no longer depends on the level.
+  start = Clock::now();
+  result.mesh.vertices = loop_limit_positions(result.mesh);
+  record("limit", start, static_cast<int64_t>(result.mesh.vertices.size()),
+         static_cast<int64_t>(result.mesh.faces.size()));
+  return result;
+}
+
+std::string stats_json(const MeshResult& result, int indent) {
+  nlohmann::ordered_json j;
+  j["vertices"] = result.mesh.vertices.size();
+  j["triangles"] = result.mesh.faces.size();
+  j["sections"] = result.sections;
+  j["joint_patches"] = result.joint_patches;
+  j["absorbed_branches"] = result.absorbed_branches;
+  double total = 0;
+  for (const StageStats& s : result.stages) {
+    j["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"vertices", s.vertices}, {"faces", s.faces}});
+    total += s.seconds;
+  }
+  j["seconds"] = total;
+  return j.dump(indent);
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,43 @@
+#pragma once
+// The whole surface pipeline, stage by stage:
+//   graph → sample → frames → tile (base mesh) → triangulate → subdivide → limit
+// with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
+
+#include <string>
+#include <vector>
+
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/mesh/tri_mesh.hpp"
+#include "vesselmesh/tile/base_mesh.hpp"
+
+namespace vesselmesh {
+
+struct MeshOptions {
+  SamplingOptions sampling;
+  Caps caps = Caps::flat;
+  int levels = 2;  ///< uniform Loop levels, 0..4
+};
+
+struct StageStats {
+  std::string stage;
+  double seconds = 0;
+  int64_t vertices = 0, faces = 0;
+};
+
+struct MeshResult {
+  TriMesh mesh;
+  std::vector<StageStats> stages;
+  int64_t sections = 0, joint_patches = 0, absorbed_branches = 0;
+};
+
+/// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices
+/// are finally moved to the Loop limit surface, is at the centerline radius: Loop pulls a four-sided
+/// tube towards its axis (test_pipeline: RadiusScaleMakesSubdividedTubesFaithful).
+double subdivision_radius_scale();
+
+MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options);
+
+/// Counts and per-stage times as JSON text.
+std::string stats_json(const MeshResult& result, int indent = 2);
+
+}  // namespace vesselmesh

@@ -1,0 +1,104 @@
+#include "vesselmesh/sample/sample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace vesselmesh {
+
+namespace {
+
+struct Spacing {
+  const BranchCurve& curve;
+  double alpha, beta;
+  double g(double s) const {
+    const double r = curve.radius_at(s);
+    return std::max(alpha * r / (1.0 + beta * curve.kappa_at(s)), 0.25 * r);
+  }
+  /// How far `t` is from being the next section after `s`: ≥ 0 once it is far enough.
+  double gap(double s, double t) const { return (curve.position(t) - curve.position(s)).norm() - g(s) - g(t); }
+};
+
+/// The next section from `s` towards `limit` (either direction): the first root of gap(s, ·), bracketed
+/// by walking the curve's points, then bisected. Nothing when no admissible position precedes `limit`.
+std::optional<double> step(const Spacing& sp, double s, double limit) {
+  const BranchCurve& c = sp.curve;
+  const bool forward = limit > s;
+  double previous = s;
+  // Candidate bracket ends: the curve's points strictly between s and limit, then limit itself.
+  std::size_t i = c.segment(s);
+  auto next_knot = [&]() -> double {
+    if (forward) {
+      while (i + 1 < c.arc.size() && c.arc[i + 1] <= previous) ++i;
+      return i + 1 < c.arc.size() ? std::min(c.arc[i + 1], limit) : limit;
+    }
+    while (i > 0 && c.arc[i] >= previous) --i;
+    return c.arc[i] < previous ? std::max(c.arc[i], limit) : limit;
+  };
+  while (previous != limit) {
+    const double t = next_knot();
+    if (sp.gap(s, t) >= 0.0) {
+      double lo = previous, hi = t;  // gap(lo) < 0 ≤ gap(hi)
+      for (int it = 0; it < 60 && std::abs(hi - lo) > 1e-12 * c.length(); ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (sp.gap(s, mid) >= 0.0 ? hi : lo) = mid;
+      }
+      return hi;
+    }
+    previous = t;
+  }
+  return std::nullopt;
+}
+
+std::vector<double> unidirectional(const Spacing& sp, double start, double end) {
+  std::vector<double> out{start};
+  while (auto next = step(sp, out.back(), end)) {
+    if (*next >= end) break;
+    out.push_back(*next);
+  }
+  out.push_back(end);
+  return out;
+}
+
+std::vector<double> bidirectional(const Spacing& sp, double start, double end, double meet_min_ratio) {
+  std::vector<double> left{start}, right{end};
+  while (true) {
+    const auto l = step(sp, left.back(), right.back());
+    const auto r = step(sp, right.back(), left.back());
+    if (!l || !r) break;
+    if (*l >= *r) {
+      // The fronts met or crossed: one section in the middle when the gap is too long for none.
+      if (*l == *r)
+        left.push_back(*l);
+      else if (sp.gap(left.back(), right.back()) > 0.0)
+        left.push_back(0.5 * (left.back() + right.back()));
+      break;
+    }
+    left.push_back(*l);
+    right.push_back(*r);
+  }
+  // A tiny middle gap would leave a thin, twisted tube piece: merge its two sections into one.
+  const double xl = left.back(), xr = right.back();
+  if (left.size() > 1 && right.size() > 1 && xr > xl) {
+    const double desired = sp.g(xl) + sp.g(xr);
+    if ((sp.curve.position(xr) - sp.curve.position(xl)).norm() < meet_min_ratio * desired) {
+      left.back() = 0.5 * (xl + xr);
+      right.pop_back();
+    }
+  }
+  left.insert(left.end(), right.rbegin(), right.rend());
+  left.erase(std::unique(left.begin(), left.end()), left.end());
+  return left;
+}
+
+}  // namespace
+
+std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
+                                  const SamplingOptions& options) {
+  const Spacing sp{curve, options.alpha, options.beta * curve.median_radius};
+  if (end <= start) return {start, end};
+  return options.method == Sampling::unidirectional ? unidirectional(sp, start, end)
+                                                    : bidirectional(sp, start, end, options.meet_min_ratio);
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,449 @@
+#include "vesselmesh/tile/base_mesh.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "vesselmesh/frames/frames.hpp"
+#include "vesselmesh/graph/union_find.hpp"
+#include "vesselmesh/sample/branch_curve.hpp"
+#include "vesselmesh/tile/convex_hull.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+using Quad = std::array<int32_t, 4>;
+
+/// How a branch that meets a joint is built.
+enum class Kind {
+  tube,       ///< a square at each joint end, a tube between them
+  shared,     ///< between two joints, too short for a tube: one square is a face of both patches
+  stub,       ///< from a joint to a terminal, too short for a tube: its terminal square joins the patch
+  swallowed,  ///< between two joints that could not be parted: inside their merged patch
+};
+
+/// One end of a branch at a joint, and the square that closes the patch there.
+struct End {
+  int32_t branch = -1;
+  bool at_start = true;  ///< the joint is the branch's first point
+  double t = 0;          ///< arc distance of the square from the joint
+  bool stuck = false;    ///< pushed to the far end of its branch without clearing the other squares
+  bool fixed = false;    ///< stub and shared squares stay where they are
+  Section square;        ///< normal points away from the joint, corners counter-clockwise about it
+  int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
+};
+
+/// A joint patch: one joint, or several joints too close to part, and the branch ends that meet it.
+struct Patch {
+  std::vector<int32_t> joints;  ///< joint points
+  std::vector<int32_t> ends;    ///< indices into Tiler::ends_
+};
+
+class Tiler {
+ public:
+  Tiler(const CenterlineGraph& g, const TileOptions& o) : g_(g), opt_(o), joints_(g.points.size()) {
+    for (const Branch& b : g.branches) curves_.push_back(branch_curve(g, b));
+    kind_.assign(g.branches.size(), Kind::tube);
+    shared_at_.assign(g.branches.size(), 0.0);
+    shared_up_.assign(g.branches.size(), Vec3::Zero());
+    shared_vertex_.assign(g.branches.size(), -1);
+  }
+
+  BaseMesh run() {
+    find_patches();
+    for (const Patch& p : patches_) build_patch(p);
+    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+      if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
+    drop_unused_vertices();
+    return std::move(mesh_);
+  }
+
+ private:
+  const CenterlineGraph& g_;
+  const TileOptions& opt_;
+  UnionFind joints_;  // joints that share a patch
+  std::vector<BranchCurve> curves_;
+  std::vector<Kind> kind_;
+  std::vector<double> shared_at_;      // shared: arc position of the square from the branch's start
+  std::vector<Vec3> shared_up_;        // shared: its up-vector
+  std::vector<int32_t> shared_vertex_;  // shared: first corner vertex, corners as seen from the start
+  std::vector<End> ends_;
+  std::vector<int32_t> head_, tail_;  // per branch: its end at its first / last point, or -1
+  std::vector<Patch> patches_;
+  BaseMesh mesh_;
+
+  bool is_joint(int32_t v) const { return g_.degree(v) >= 3; }
+  int32_t first_point(int32_t b) const { return g_.branches[b].points.front(); }
+  int32_t last_point(int32_t b) const { return g_.branches[b].points.back(); }
+  double scale() const { return opt_.radius_scale; }
+
+  /// The square of `e` at arc distance t from its joint (up-vector still to be chosen).
+  Section square_at(const End& e, double t) const {
+    const BranchCurve& c = curves_[e.branch];
+    const double s = e.at_start ? t : c.length() - t;
+    Section q;
+    q.center = c.position(s);
+    q.radius = c.radius_at(s);
+    const Vec3 tangent = c.tangent(s);
+    q.normal = e.at_start ? tangent : -tangent;
+    return q;
+  }
+
+  /// Up-vectors for a patch's free squares: the projection of the patch's reference direction (the
+  /// normal of the best-fit plane of its branch directions), turned 45° so that a square's edge faces
+  /// its neighbours, plus a small per-square offset so that corners of different squares are not
+  /// coplanar.
+  void orient_squares(const Patch& p, int attempt) {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int32_t i : p.ends) m += ends_[i].square.normal * ends_[i].square.normal.transpose();
+    const Vec3 ref = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvectors().col(0);
+    for (std::size_t i = 0; i < p.ends.size(); ++i) {
+      End& e = ends_[p.ends[i]];
+      if (kind_[e.branch] == Kind::shared) continue;
+      Vec3 u = ref - ref.dot(e.square.normal) * e.square.normal;
+      u = u.norm() > 0.2 ? u.normalized() : any_perpendicular(e.square.normal);
+      const double offset = std::fmod(0.6180339887 * static_cast<double>(i + 7 * attempt), 1.0) - 0.5;
+      e.square.up = rotate(u, e.square.normal, M_PI / 4 + offset * (0.1 + 0.3 * attempt));
+    }
+  }
+
+  /// How far the corners of `p`'s squares other than e's reach past the plane of e's square, plus a
+  /// margin: ≤ 0 when they all lie behind it, and e's square is a face of the patch's hull.
+  double intrusion(const End& e, const Patch& p) const {
+    const double margin = 0.1 * scale() * e.square.radius;
+    double reach = -std::numeric_limits<double>::infinity();
+    for (int32_t i : p.ends)
+      if (&ends_[i] != &e)
+        for (int k = 0; k < 4; ++k)
+          reach = std::max(reach, e.square.normal.dot(ends_[i].square.corner(k, scale()) - e.square.center));
+    return reach + margin;
+  }
+
+  /// Pushes each free square along its branch until it is a face of the patch's hull. Stub and shared
+  /// squares stay put; a square that reaches the far end of its branch is marked stuck.
+  void place_squares(const Patch& p, int attempt) {
+    for (int32_t i : p.ends) {
+      End& e = ends_[i];
+      const BranchCurve& c = curves_[e.branch];
+      e.stuck = false;
+      e.fixed = kind_[e.branch] != Kind::tube;
+      if (kind_[e.branch] == Kind::stub) {
+        e.t = c.length();
+      } else if (kind_[e.branch] == Kind::shared) {
+        e.t = e.at_start ? shared_at_[e.branch] : c.length() - shared_at_[e.branch];
+      } else {
+        e.t = std::min(c.length(), 0.25 * c.radius_at(e.at_start ? 0 : c.length()) * (1 + attempt));
+      }
+      e.square = square_at(e, e.t);
+      if (kind_[e.branch] == Kind::shared) e.square.up = shared_up_[e.branch];
+    }
+    for (int iteration = 0; iteration < 1000; ++iteration) {
+      orient_squares(p, attempt);
+      bool moved = false;
+      for (int32_t i : p.ends) {
+        End& e = ends_[i];
+        if (e.fixed || e.stuck) continue;
+        const double overlap = intrusion(e, p);
+        if (overlap <= 0) continue;
+        // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
+        const double length = curves_[e.branch].length();
+        e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
+        e.stuck = e.t >= length;
+        e.square = square_at(e, e.t);
+        moved = true;
+      }
+      if (!moved) return;
+    }
+  }
+
+  /// Where one square on branch b can close both of its joints' patches: its plane must have the
+  /// other squares of the start's patch behind it and those of the end's patch in front. Returns the
+  /// best position's clearance (> 0 when it works) and sets shared_at_[b].
+  double best_shared_square(int32_t b) {
+    const BranchCurve& c = curves_[b];
+    const Patch& head_patch = patches_[patch_of_end_[head_[b]]];
+    const Patch& tail_patch = patches_[patch_of_end_[tail_[b]]];
+    double best = -std::numeric_limits<double>::infinity();
+    constexpr int kCandidates = 15;
+    for (int k = 1; k <= kCandidates; ++k) {
+      const double s = c.length() * k / (kCandidates + 1);
+      const Vec3 center = c.position(s);
+      const double r = c.radius_at(s);
+      const Vec3 normal = c.tangent(s);
+      double clearance = std::numeric_limits<double>::infinity();
+      auto consider = [&](const Patch& p, double side) {
+        for (int32_t i : p.ends) {
+          if (ends_[i].branch == b) continue;
+          for (int q = 0; q < 4; ++q)
+            clearance = std::min(clearance, -side * normal.dot(ends_[i].square.corner(q, scale()) - center));
+        }
+      };
+      consider(head_patch, 1.0);
+      consider(tail_patch, -1.0);
+      // Clear of both patches by a margin.
+      clearance -= 0.1 * scale() * r;
+      if (clearance > best) best = clearance, shared_at_[b] = s;
+    }
+    return best;
+  }
+
+  /// Groups joints into patches and decides each branch's kind. A branch between two joints too short
+  /// for a tube first tries one shared square; failing that, its joints merge into one patch. A branch
+  /// from a joint to a terminal too short for a tube becomes a stub. Repeated until nothing changes.
+  void find_patches() {
+    for (int round = 0;; ++round) {
+      collect_patches();
+      for (const Patch& p : patches_) place_squares(p, 0);
+      bool changed = false;
+      for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+        const int32_t b = static_cast<int32_t>(bi);
+        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || (head_[b] < 0 && tail_[b] < 0)) continue;
+        const bool both = head_[b] >= 0 && tail_[b] >= 0;
+        if (kind_[b] == Kind::shared) {
+          const Patch& hp = patches_[patch_of_end_[head_[b]]];
+          const Patch& tp = patches_[patch_of_end_[tail_[b]]];
+          if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
+        } else {
+          double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
+          bool stuck = false;
+          for (int32_t i : {head_[b], tail_[b]})
+            if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
+          if (!stuck && used <= curves_[b].length()) continue;
+        }
+        changed = true;
+        if (!both) {
+          kind_[b] = Kind::stub;
+          ++mesh_.absorbed_branches;
+        } else if (kind_[b] == Kind::tube && best_shared_square(b) > 0) {
+          kind_[b] = Kind::shared;
+          shared_up_[b] = any_perpendicular(curves_[b].tangent(shared_at_[b]));
+        } else {
+          kind_[b] = Kind::swallowed;
+          joints_.unite(first_point(b), last_point(b));
+          ++mesh_.absorbed_branches;
+        }
+      }
+      if (!changed) return;
+    }
+  }
+
+  std::vector<int32_t> patch_of_end_;
+
+  void collect_patches() {
+    ends_.clear();
+    patches_.clear();
+    patch_of_end_.clear();
+    head_.assign(g_.branches.size(), -1);
+    tail_.assign(g_.branches.size(), -1);
+    std::vector<int32_t> patch_of(g_.points.size(), -1);
+    auto patch_for = [&](int32_t v) {
+      int32_t& id = patch_of[joints_.find(v)];
+      if (id < 0) id = static_cast<int32_t>(patches_.size()), patches_.emplace_back();
+      return id;
+    };
+    for (int32_t v = 0; v < static_cast<int32_t>(g_.points.size()); ++v)
+      if (is_joint(v)) patches_[patch_for(v)].joints.push_back(v);
+    for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+      const int32_t b = static_cast<int32_t>(bi);
+      if (kind_[b] == Kind::swallowed) continue;
+      for (bool at_start : {true, false}) {
+        const int32_t v = at_start ? first_point(b) : last_point(b);
+        if (!is_joint(v)) continue;
+        End e;
+        e.branch = b;
+        e.at_start = at_start;
+        (at_start ? head_ : tail_)[b] = static_cast<int32_t>(ends_.size());
+        const int32_t patch = patch_for(v);
+        patches_[patch].ends.push_back(static_cast<int32_t>(ends_.size()));
+        patch_of_end_.push_back(patch);
+        ends_.push_back(e);
+      }
+    }
+  }
+
+  int32_t add_section(const Section& s) {
+    const int32_t first = static_cast<int32_t>(mesh_.vertices.size());
+    for (int k = 0; k < 4; ++k) {
+      mesh_.vertices.push_back(s.corner(k, scale()));
+      mesh_.axis.push_back(s.center);
+      mesh_.axis_radius.push_back(s.radius);
+    }
+    ++mesh_.sections;
+    return first;
+  }
+
+  /// The patch's vertex ids for the square of end `e`, corners counter-clockwise about its normal.
+  /// A shared square's corners are made once; seen from the branch's end they run the other way.
+  std::array<int32_t, 4> square_vertices(const End& e) {
+    if (kind_[e.branch] != Kind::shared) {
+      const int32_t first = add_section(e.square);
+      return {first, first + 1, first + 2, first + 3};
+    }
+    int32_t& first = shared_vertex_[e.branch];
+    if (first < 0) {
+      Section from_start = e.square;
+      if (!e.at_start) from_start.normal = -from_start.normal;
+      first = add_section(from_start);
+    }
+    if (e.at_start) return {first, first + 1, first + 2, first + 3};
+    return {first, first + 3, first + 2, first + 1};
+  }
+
+  /// The convex hull of the patch's squares with the tubes' and shared squares cut out. When exact
+  /// coplanarity spoils the hull (the check below is exact), retried with other square turns and the
+  /// free squares pushed further out.
+  void build_patch(const Patch& p) {
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      if (attempt > 0) place_squares(p, attempt);
+      std::vector<Vec3> corners;
+      for (int32_t i : p.ends)
+        for (int k = 0; k < 4; ++k) corners.push_back(ends_[i].square.corner(k, scale()));
+      // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
+      // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar
+      // square would otherwise come back with both diagonals).
+      std::vector<Tri> patch;
+      std::vector<int> stub_side(p.ends.size(), 0);  // +1: the stub square faces outwards, −1: inwards
+      for (const Tri& t : convex_hull(corners)) {
+        const int32_t square = t[0] / 4;
+        if (t[1] / 4 != square || t[2] / 4 != square) {
+          patch.push_back(t);
+          continue;
+        }
+        const Vec3 normal = (corners[t[1]] - corners[t[0]]).cross(corners[t[2]] - corners[t[0]]);
+        stub_side[square] = normal.dot(ends_[p.ends[square]].square.normal) > 0 ? 1 : -1;
+      }
+      for (std::size_t s = 0; s < p.ends.size(); ++s) {
+        // With open caps a stub's terminal square on the hull stays open, like any other terminal.
+        if (kind_[ends_[p.ends[s]].branch] != Kind::stub || stub_side[s] == 0 || opt_.caps == Caps::open) continue;
+        const int32_t q = static_cast<int32_t>(4 * s);
+        if (stub_side[s] > 0)
+          patch.insert(patch.end(), {Tri{q, q + 1, q + 2}, Tri{q, q + 2, q + 3}});
+        else
+          patch.insert(patch.end(), {Tri{q, q + 2, q + 1}, Tri{q, q + 3, q + 2}});
+      }
+      if (!closes_openings(patch, p)) continue;
+      std::vector<int32_t> id;
+      for (int32_t i : p.ends) {
+        const auto v = square_vertices(ends_[i]);
+        ends_[i].first_vertex = v[0];
+        id.insert(id.end(), v.begin(), v.end());
+      }
+      for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
+      ++mesh_.joints;
+      return;
+    }
+    const Vec3& at = g_.points[p.joints[0]];
+    throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
+                             ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+  }
+
+  /// The patch must use each opening's edges once, against the square's direction (the tube or the
+  /// other patch uses them along it), and every other edge twice, once each way.
+  bool closes_openings(const std::vector<Tri>& patch, const Patch& p) const {
+    std::map<std::pair<int32_t, int32_t>, int> directed;
+    for (const Tri& t : patch)
+      for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+    for (std::size_t s = 0; s < p.ends.size(); ++s) {
+      if (kind_[ends_[p.ends[s]].branch] == Kind::stub) continue;
+      for (int k = 0; k < 4; ++k) {
+        const int32_t a = static_cast<int32_t>(4 * s) + k, b = static_cast<int32_t>(4 * s) + (k + 1) % 4;
+        if (directed[{b, a}] != 1 || directed[{a, b}] != 0) return false;
+        directed.erase({b, a});
+        directed.erase({a, b});
+      }
+    }
+    for (const auto& [edge, count] : directed) {
+      if (count == 0) continue;
+      const auto it = directed.find({edge.second, edge.first});
+      if (count != 1 || it == directed.end() || it->second != 1) return false;
+    }
+    return true;
+  }
+
+  void build_tube(int32_t b) {
+    const BranchCurve& c = curves_[b];
+    const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
+    const End* tail = tail_[b] >= 0 ? &ends_[tail_[b]] : nullptr;
+    const bool ring = first_point(b) == last_point(b) && !head;
+    const double from = head ? head->t : 0.0, to = c.length() - (tail ? tail->t : 0.0);
+    std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
+    if (ring && arcs.size() < 4) arcs = {0.0, c.length() / 3, 2 * c.length() / 3, c.length()};
+
+    const std::size_t m = arcs.size() - 1;
+    std::vector<Section> sections(m + 1);
+    for (std::size_t i = 0; i <= m; ++i) {
+      sections[i].center = c.position(arcs[i]);
+      sections[i].radius = c.radius_at(arcs[i]);
+    }
+    if (ring) sections.back().center = sections.front().center;
+    for (std::size_t i = 0; i <= m; ++i) sections[i].normal = c.tangent(arcs[i]);
+    if (head) sections.front().normal = head->square.normal;
+    if (tail) sections.back().normal = -tail->square.normal;
+    sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
+    const Vec3 first_up = sections.front().up;
+    const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
+    const int k = transport_frames(sections, target);
+
+    // Vertex ids of each section's corners, counter-clockwise about the direction of travel.
+    std::vector<std::array<int32_t, 4>> ids(m + 1);
+    for (std::size_t i = 0; i <= m; ++i) {
+      if (i == 0 && head) {
+        for (int j = 0; j < 4; ++j) ids[i][j] = head->first_vertex + j;
+      } else if (i == m && ring) {
+        for (int j = 0; j < 4; ++j) ids[i][j] = ids[0][((j - k) % 4 + 4) % 4];
+      } else if (i == m && tail) {
+        // The tail square runs counter-clockwise about its outward normal, against the travel.
+        for (int j = 0; j < 4; ++j) ids[i][j] = tail->first_vertex + ((k - j) % 4 + 4) % 4;
+      } else {
+        const int32_t first = add_section(sections[i]);
+        for (int j = 0; j < 4; ++j) ids[i][j] = first + j;
+      }
+    }
+    for (std::size_t i = 0; i < m; ++i)
+      for (int j = 0; j < 4; ++j)
+        mesh_.quads.push_back({ids[i][j], ids[i][(j + 1) % 4], ids[i + 1][(j + 1) % 4], ids[i + 1][j]});
+    if (opt_.caps == Caps::flat && !ring) {
+      if (!head) mesh_.quads.push_back({ids[0][3], ids[0][2], ids[0][1], ids[0][0]});
+      if (!tail) mesh_.quads.push_back({ids[m][0], ids[m][1], ids[m][2], ids[m][3]});
+    }
+  }
+
+  /// Stub squares that ended up inside a patch's hull are not used by any face.
+  void drop_unused_vertices() {
+    std::vector<int32_t> new_id(mesh_.vertices.size(), -1);
+    for (const Quad& q : mesh_.quads)
+      for (int32_t v : q) new_id[v] = 0;
+    for (const Tri& t : mesh_.triangles)
+      for (int32_t v : t) new_id[v] = 0;
+    int32_t next = 0;
+    for (std::size_t v = 0; v < new_id.size(); ++v) {
+      if (new_id[v] < 0) continue;
+      new_id[v] = next;
+      mesh_.vertices[next] = mesh_.vertices[v];
+      mesh_.axis[next] = mesh_.axis[v];
+      mesh_.axis_radius[next] = mesh_.axis_radius[v];
+      ++next;
+    }
+    mesh_.vertices.resize(next);
+    mesh_.axis.resize(next);
+    mesh_.axis_radius.resize(next);
+    for (Quad& q : mesh_.quads)
+      for (int32_t& v : q) v = new_id[v];
+    for (Tri& t : mesh_.triangles)
+      for (int32_t& v : t) v = new_id[v];
+  }
+};
+
+}  // namespace
+
+BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options) {
+  return Tiler(graph, options).run();
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,41 @@
+#pragma once
+// The base mesh: square cross-sections along every branch, joined into tubes, closed by flat caps at
+// terminals and by a convex-hull patch around every joint. Each step is a gluing that keeps the
+// surface a closed 2-manifold (a hull is a sphere; removing its square faces leaves one hole per tube;
+// a tube is an annulus glued to two square loops; a cap is a disc), so the result has one component
+// per centerline component and genus equal to the number of independent loops.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/mesh/tri_mesh.hpp"
+#include "vesselmesh/sample/sample.hpp"
+
+namespace vesselmesh {
+
+enum class Caps { flat, open };
+
+struct TileOptions {
+  SamplingOptions sampling;
+  Caps caps = Caps::flat;
+  /// Square corners sit at radius_scale × r, so that the subdivided surface, which shrinks towards the
+  /// axis, ends at radius r (see subdivision_radius_scale).
+  double radius_scale = 1.0;
+};
+
+struct BaseMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
+  std::vector<Tri> triangles;                 ///< joint patches
+  std::vector<Vec3> axis;                     ///< per vertex: the centre of its cross-section
+  std::vector<double> axis_radius;            ///< per vertex: the centerline radius of its cross-section
+  int64_t sections = 0;                       ///< cross-sections, joint squares included
+  int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
+  int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
+};
+
+BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options);
+
+}  // namespace vesselmesh

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# The project's one entry point (the README's quick start calls it).
+#   scripts/dev.sh demo   install what is missing, build, run the main job on the built-in default
+#   scripts/dev.sh test   install what is missing, build, run every test (C++, sanitizers, Python, Blender)
+#   scripts/dev.sh build  install what is missing and build
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+build="$root/build"
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# Debian 12 packages the build, the tests and the add-on need.
+packages=(cmake g++ make libeigen3-dev libopenmesh-dev pybind11-dev python3-dev python3-pybind11 python3-numpy
+          python3-pytest libpugixml-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libgtest-dev blender)
+
+install_missing() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return
+  echo "== installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+}
+
+build() {
+  install_missing
+  echo "== building (Release) in build/"
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build" -j"$jobs"
+}
+
+demo() {
+  build
+  mkdir -p "$build/demo"
+  echo "== main job: a synthetic arterial network, its graph, its surface, and a check of the surface"
+  "$build/bin/vesselmesh" synth -o "$build/demo/network.vtk" --sections 2000 --loops 2 --seed 1
+  "$build/bin/vesselmesh" info "$build/demo/network.vtk"
+  "$build/bin/vesselmesh" mesh "$build/demo/network.vtk" -o "$build/demo/network.ply" --levels 2 \
+    --stats-json "$build/demo/stats.json"
+  "$build/bin/vesselmesh" check "$build/demo/network.ply" --centerline "$build/demo/network.vtk"
+}
+
+run_tests() {
+  build
+  local failed=()
+  echo "== C++ tests"
+  ctest --test-dir "$build" --output-on-failure -j"$jobs" || failed+=("C++ tests")
+
+  echo "== C++ tests under AddressSanitizer and UBSan"
+  cmake -S "$root" -B "$build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DVESSELMESH_SANITIZE=ON \
+        -DVESSELMESH_PYTHON=OFF >/dev/null
+  cmake --build "$build/sanitize" -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir "$build/sanitize" --output-on-failure -j"$jobs" || failed+=("sanitizer tests")
+
+  echo "== Python module tests (/usr/bin/python3)"
+  VESSELMESH_PYTHON_PATH="$build/python" /usr/bin/python3 -m pytest -q -p no:cacheprovider \
+    native/python/tests || failed+=("Python tests")
+
+  echo "== Blender tests (blender -b)"
+  VESSELMESH_PYTHON_PATH="$build/python" blender -b --factory-startup --python-exit-code 1 \
+    --python blend_tests/run.py -- -q -p no:cacheprovider blend_tests || failed+=("Blender tests")
+
+  if [ ${#failed[@]} -gt 0 ]; then
+    echo "FAILED: ${failed[*]}"
+    exit 1
+  fi
+  echo "all test suites passed"
+}
+
+case "${1:-}" in
+  demo) demo ;;
+  test) run_tests ;;
+  build) build ;;
+  *) echo "usage: scripts/dev.sh demo|test|build" >&2; exit 2 ;;
+esac
