@@ -222,4 +222,19 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       },
       py::arg("vertices"), py::arg("faces"), py::arg("graph") = nullptr,
       "What `vesselmesh check --json` reports for a surface (radius fidelity when a graph is given).");
+
+  m.def(
+      "radius_error",
+      [](const Points& vertices, const Indices& faces, const CenterlineGraph& graph) {
+        const TriMesh mesh = mesh_from_arrays(vertices, faces);
+        FidelityReport report;
+        {
+          py::gil_scoped_release release;
+          report = radius_fidelity(mesh, graph);
+        }
+        return to_array(report.per_vertex.data(), {static_cast<py::ssize_t>(report.per_vertex.size())});
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("graph"),
+      "(V,) float32: each vertex's signed distance to the union of the centerline's round cones, relative\n"
+      "to the local radius (negative: inside, too thin); NaN for end-cap vertices.");
 }

@@ -315,7 +315,7 @@ TEST(Loop, VertexWithMoreThanTwoBoundaryEdgesStaysFixed) {
   mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
   mesh.faces = {{0, 1, 2}, {0, 3, 4}};
   EXPECT_EQ(loop_subdivide(mesh, 2).vertices[0], mesh.vertices[0]);
-  EXPECT_EQ(loop_limit_positions(mesh)[0], mesh.vertices[0]);
+  EXPECT_EQ(loop_limit(mesh).vertices[0], mesh.vertices[0]);
   // Vertex 1 is an ordinary boundary vertex: 3/4 v + 1/8 (b0 + b1).
   EXPECT_LT((loop_subdivide(mesh).vertices[1] - Vec3(0.875, 0.125, 0)).norm(), 1e-15);
 }
@@ -324,7 +324,7 @@ TEST(Loop, VerticesApproachTheirLimitPositionsAsLevelsIncrease) {
   // A sphere-like control mesh with valences 4 and 6.
   TriMesh sphere = loop_subdivide(octahedron(), 2);
   for (Vec3& p : sphere.vertices) p.normalize();
-  const std::vector<Vec3> limit = loop_limit_positions(sphere);
+  const std::vector<Vec3> limit = loop_limit(sphere).vertices;
   double previous = HUGE_VAL;
   for (int level = 0; level <= 5; ++level) {
     const TriMesh m = loop_subdivide(sphere, level);
@@ -335,7 +335,7 @@ TEST(Loop, VerticesApproachTheirLimitPositionsAsLevelsIncrease) {
     EXPECT_LT(worst, 0.5 * previous) << "level " << level;
     previous = worst;
     // The limit surface does not change under subdivision, nor do the limit points of old vertices.
-    const std::vector<Vec3> limit_now = loop_limit_positions(m);
+    const std::vector<Vec3> limit_now = loop_limit(m).vertices;
     for (size_t i = 0; i < sphere.vertices.size(); ++i) EXPECT_LT((limit_now[i] - limit[i]).norm(), 1e-12);
   }
   EXPECT_LT(previous, 1e-3);
@@ -362,7 +362,7 @@ TEST(Loop, SquareTubeShrinksToTheKnownMeanRadius) {
   }
   // The limit surface, sampled at the limit points of the level-3 vertices (those of the control vertices
   // alone are the corners' only, which lie farther out than the mean).
-  const double limit = mean_distance_from_axis(loop_limit_positions(m));
+  const double limit = mean_distance_from_axis(loop_limit(m).vertices);
   std::cout << "limit: mean distance from the axis " << limit << "\n";
   EXPECT_NEAR(limit, 0.657, 0.01);
 }
@@ -396,7 +396,7 @@ TEST(Loop, NonManifoldOrInconsistentEdgeThrowsNamingTheEdge) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("edge (0, 1)"), std::string::npos) << e.what();
     }
-    EXPECT_THROW(loop_limit_positions(mesh), std::invalid_argument);
+    EXPECT_THROW(loop_limit(mesh), std::invalid_argument);
   }
 }
 

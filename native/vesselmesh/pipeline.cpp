@@ -50,7 +50,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   }
   // Every level's vertices moved onto the limit surface: the radius no longer depends on the level.
   start = Clock::now();
-  result.mesh.vertices = loop_limit_positions(result.mesh);
+  result.mesh = loop_limit(result.mesh);
   record("limit", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
   return result;

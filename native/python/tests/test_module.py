@@ -122,3 +122,12 @@ def test_mesh_rejects_unknown_options(project_data, kwargs):
 def test_check_rejects_faces_out_of_range():
     with pytest.raises(vm.InputError, match="face 0"):
         vm.check(np.zeros((3, 3)), np.array([[0, 1, 5]]))
+
+
+def test_radius_error_is_small_on_a_tube_and_nan_on_its_caps(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    surface = vm.mesh(graph, levels=2)
+    error = vm.radius_error(surface["vertices"], surface["faces"], graph)
+    assert error.shape == (len(surface["vertices"]),) and error.dtype == np.float32
+    assert np.isnan(error).any() and not np.isnan(error).all()
+    assert np.nanmedian(np.abs(error)) < 0.05

@@ -452,14 +452,16 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   const RoundCones cones(centerline);
   const TerminalCaps caps(centerline);
   std::vector<double> signed_error, abs_error;
-  for (const Vec3& p : mesh.vertices) {
-    if (caps.contain(p)) {
+  r.per_vertex.assign(mesh.vertices.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (caps.contain(mesh.vertices[v])) {
       ++r.excluded_cap_vertices;
       continue;
     }
-    const ConeDistance d = cones.nearest(p);
+    const ConeDistance d = cones.nearest(mesh.vertices[v]);
     signed_error.push_back(d.distance / d.radius);
     abs_error.push_back(std::abs(d.distance / d.radius));
+    r.per_vertex[v] = static_cast<float>(signed_error.back());
   }
   r.relative_error = distribution(std::move(signed_error));
   r.abs_relative_error = distribution(std::move(abs_error));

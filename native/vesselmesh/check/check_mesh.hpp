@@ -62,6 +62,7 @@ struct FidelityReport {
   Distribution abs_relative_error;  ///< |signed distance to the union of round cones| / local radius
   Distribution relative_error;      ///< signed (negative = inside, too thin)
   int64_t excluded_cap_vertices = 0;
+  std::vector<float> per_vertex;    ///< signed relative error of each vertex, NaN for cap vertices
 };
 
 struct CheckReport {

@@ -229,14 +229,16 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   return result;
 }
 
-std::vector<Vec3> loop_limit_positions(const TriMesh& mesh) {
+TriMesh loop_limit(const TriMesh& mesh) {
   const Connectivity c = connect(mesh);
   const std::vector<VertexMask> masks = vertex_masks(c, {2.0 / 3, 1.0 / 6}, [](int n) {
     const double chi = 1 / (3 / (8 * loop_beta(n)) + n);
     return VertexMask{1 - n * chi, chi};
   });
-  std::vector<Vec3> limit(mesh.vertices.size());
-  apply_vertex_masks(c, masks, mesh.vertices.data(), limit.data());
+  TriMesh limit = mesh;
+  apply_vertex_masks(c, masks, mesh.vertices.data(), limit.vertices.data());
+  for (std::size_t k = 0; k < mesh.vertex_properties.size(); ++k)
+    apply_vertex_masks(c, masks, mesh.vertex_properties[k].values.data(), limit.vertex_properties[k].values.data());
   return limit;
 }
 

@@ -33,9 +33,10 @@ TriMesh loop_subdivide(const TriMesh& mesh);
 /// `levels` (≥ 0) uniform Loop levels.
 TriMesh loop_subdivide(const TriMesh& mesh, int levels);
 
-/// Where each vertex ends up in the Loop limit surface: interior (1 − nχ)·v + χ·Σv_j with
+/// The mesh with every vertex moved to where it ends up in the Loop limit surface: interior (1 − nχ)·v + χ·Σv_j with
 /// χ = 1/(3/(8β_n) + n); boundary 2/3·v + 1/6·(b0 + b1); vertices that subdivision keeps fixed stay fixed.
 /// Same input requirements as loop_subdivide.
-std::vector<Vec3> loop_limit_positions(const TriMesh& mesh);
+/// Vertex properties are mapped by the same masks.
+TriMesh loop_limit(const TriMesh& mesh);
 
 }  // namespace vesselmesh
