@@ -182,9 +182,10 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
-         const std::string& caps) {
+         const std::string& caps, bool curvature) {
         MeshOptions o;
         o.levels = levels;
+        o.curvature = curvature;
         if (sampling != "bidirectional" && sampling != "unidirectional")
           throw std::invalid_argument("sampling must be 'bidirectional' or 'unidirectional'");
         o.sampling.method = sampling == "bidirectional" ? Sampling::bidirectional : Sampling::unidirectional;
@@ -202,12 +203,17 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         out["faces"] = to_array(r.mesh.faces.empty() ? nullptr : r.mesh.faces.front().data(),
                                 {static_cast<py::ssize_t>(r.mesh.faces.size()), 3});
         out["stats"] = json_to_python(stats_json(r, -1));
+        py::dict properties;
+        for (const VertexProperty& p : r.mesh.vertex_properties)
+          properties[p.name.c_str()] = to_array(p.values.data(), {static_cast<py::ssize_t>(p.values.size())});
+        out["curvature"] = properties;
         return out;
       },
       py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
-      py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat",
+      py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
       "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
-      "from outside) and stats (counts and per-stage times).");
+      "from outside), stats (counts and per-stage times) and curvature (with curvature=True: k1, k2, mean,\n"
+      "gaussian, rms as (V,) float32 arrays, 1/length, convex positive; else empty).");
 
   m.def(
       "check",

@@ -137,3 +137,17 @@ TEST(Cli, SynthWritesANetworkThatInfoReadsBack) {
     EXPECT_EQ(j["components"], 1);
   }
 }
+
+TEST(Cli, MeshWithCurvatureWritesTheFiveMeasuresIntoThePly) {
+  const std::string out = testing::TempDir() + "bifurcation.ply";
+  const CliRun run = run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" + out +
+                             "' --levels 2 --curvature");
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(out, std::ios::binary);
+  std::string header;
+  for (std::string line; std::getline(in, line) && line != "end_header";) header += line + "\n";
+  for (const char* name : {"k1", "k2", "mean", "gaussian", "rms"})
+    EXPECT_NE(header.find(std::string("property float ") + name + "\n"), std::string::npos) << name;
+  const CliRun check = run_cli("check '" + out + "'");
+  EXPECT_EQ(check.status, 0) << check.output;
+}

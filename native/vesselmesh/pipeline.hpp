@@ -1,6 +1,6 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
-//   graph → sample → frames → tile (base mesh) → triangulate → subdivide → limit
+//   graph → sample → frames → tile (base mesh) → triangulate → subdivide → limit [→ curvature]
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>
@@ -15,7 +15,8 @@ namespace vesselmesh {
 struct MeshOptions {
   SamplingOptions sampling;
   Caps caps = Caps::flat;
-  int levels = 2;  ///< uniform Loop levels, 0..4
+  int levels = 2;          ///< uniform Loop levels, 0..4
+  bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
 };
 
 struct StageStats {

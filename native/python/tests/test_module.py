@@ -131,3 +131,14 @@ def test_radius_error_is_small_on_a_tube_and_nan_on_its_caps(project_data):
     assert error.shape == (len(surface["vertices"]),) and error.dtype == np.float32
     assert np.isnan(error).any() and not np.isnan(error).all()
     assert np.nanmedian(np.abs(error)) < 0.05
+
+
+def test_mesh_with_curvature_returns_the_five_measures_of_a_tube(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    surface = vm.mesh(graph, levels=3, curvature=True)
+    k = surface["curvature"]
+    assert sorted(k) == ["gaussian", "k1", "k2", "mean", "rms"]
+    assert all(len(values) == len(surface["vertices"]) for values in k.values())
+    assert np.all(k["k1"] >= k["k2"])
+    assert np.median(k["mean"]) > 0  # a vessel is convex across its axis
+    assert vm.mesh(graph, levels=1)["curvature"] == {}

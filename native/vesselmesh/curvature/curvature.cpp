@@ -1,0 +1,277 @@
+#include "vesselmesh/curvature/curvature.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace vesselmesh {
+namespace {
+
+/// Neighbours whose unit normal makes n_j·n_v ≤ 0 face away from the vertex and are left out of its fit.
+/// Normals at right angles, as on square tubes or tubes of 8 vertices round, give dot products of ±1e-17 by
+/// rounding: the margin leaves them out whatever the rounding.
+constexpr double kFacingMargin = 1e-6;
+
+/// Compressed rows: row i holds items[offsets[i]] .. items[offsets[i + 1] − 1].
+struct Csr {
+  std::vector<size_t> offsets;
+  std::vector<int32_t> items;
+  const int32_t* begin(int32_t i) const { return items.data() + offsets[i]; }
+  const int32_t* end(int32_t i) const { return items.data() + offsets[i + 1]; }
+};
+
+/// The faces around each vertex (a counting sort of the 3F corners).
+Csr vertex_faces(const TriMesh& mesh) {
+  const size_t nv = mesh.vertices.size();
+  Csr csr;
+  csr.offsets.assign(nv + 1, 0);
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int32_t v : mesh.faces[f]) {
+      if (v < 0 || static_cast<size_t>(v) >= nv)
+        throw std::invalid_argument("curvature: face " + std::to_string(f) + " refers to vertex " +
+                                    std::to_string(v) + " of " + std::to_string(nv));
+      ++csr.offsets[v + 1];
+    }
+  for (size_t v = 0; v < nv; ++v) csr.offsets[v + 1] += csr.offsets[v];
+  csr.items.resize(csr.offsets[nv]);
+  std::vector<size_t> next(csr.offsets.begin(), csr.offsets.end() - 1);
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int32_t v : mesh.faces[f]) csr.items[next[v]++] = static_cast<int32_t>(f);
+  return csr;
+}
+
+/// The 1-ring of each vertex, sorted: the other corners of its faces.
+Csr vertex_neighbours(const TriMesh& mesh, const Csr& faces) {
+  const size_t nv = mesh.vertices.size();
+  Csr csr;
+  csr.offsets.reserve(nv + 1);
+  csr.offsets.push_back(0);
+  csr.items.reserve(faces.items.size() + nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const size_t start = csr.items.size();
+    for (const int32_t* f = faces.begin(static_cast<int32_t>(v)); f != faces.end(static_cast<int32_t>(v));
+         ++f)
+      for (int32_t w : mesh.faces[*f])
+        if (static_cast<size_t>(w) != v) csr.items.push_back(w);
+    std::sort(csr.items.begin() + start, csr.items.end());
+    csr.items.erase(std::unique(csr.items.begin() + start, csr.items.end()), csr.items.end());
+    csr.offsets.push_back(csr.items.size());
+  }
+  return csr;
+}
+
+/// Unit area-weighted vertex normals (the sum of the face cross products), zero for a vertex in no
+/// non-degenerate face.
+std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
+  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
+  for (const Tri& t : mesh.faces) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    for (int32_t v : t) normals[v] += n;
+  }
+  for (Vec3& n : normals) {
+    const double length = n.norm();
+    n = length > 0 ? Vec3(n / length) : Vec3::Zero();
+  }
+  return normals;
+}
+
+/// First and second derivatives of the fitted height function at the vertex, in scaled coordinates.
+struct HeightFit {
+  double hu = 0, hv = 0, huu = 0, huv = 0, hvv = 0;
+};
+
+/// Least-squares fit to the points (u, v, w); the vertex itself is the origin. nullopt when even the reduced
+/// model lacks the 3 points it needs.
+std::optional<HeightFit> fit_height(const std::vector<Vec3>& points) {
+  const Eigen::Index n = static_cast<Eigen::Index>(points.size());
+  if (n >= 6) {
+    Eigen::Matrix<double, Eigen::Dynamic, 6> a(n + 1, 6);
+    Eigen::VectorXd w(n + 1);
+    a.row(0) << 1, 0, 0, 0, 0, 0;  // the vertex itself
+    w(0) = 0;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Vec3& p = points[j];
+      a.row(j + 1) << 1, p.x(), p.y(), p.x() * p.x(), p.x() * p.y(), p.y() * p.y();
+      w(j + 1) = p.z();
+    }
+    Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 6>> qr(a.rows(), 6);
+    qr.setThreshold(1e-8);
+    qr.compute(a);
+    if (qr.rank() == 6) {
+      const Eigen::Matrix<double, 6, 1> c = qr.solve(w);
+      return HeightFit{c(1), c(2), 2 * c(3), c(4), 2 * c(5)};
+    }
+  }
+  if (n < 3) return std::nullopt;
+  // The vertex row is 0 = 0 here and adds nothing. A rank-deficient reduced system (collinear points) gets
+  // zeros for the coefficients it cannot determine.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> a(n, 3);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Vec3& p = points[j];
+    a.row(j) << p.x() * p.x(), p.x() * p.y(), p.y() * p.y();
+    w(j) = p.z();
+  }
+  Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 3>> qr(a.rows(), 3);
+  qr.setThreshold(1e-8);
+  qr.compute(a);
+  const Eigen::Vector3d c = qr.solve(w);
+  return HeightFit{0, 0, 2 * c(0), c(1), 2 * c(2)};
+}
+
+/// Writes vertex v's curvatures from the fit, undoing the scaling by `length`. The principal curvatures are
+/// the eigenvalues of the shape operator I⁻¹·II, i.e. of II·x = λ·I·x; their mean and product are the closed
+/// forms H = ((1 + hv²)huu − 2hu·hv·huv + (1 + hu²)hvv)/(2W^{3/2}) and K = (huu·hvv − huv²)/W².
+void store(const HeightFit& h, const Vec3& e1, const Vec3& e2, const Vec3& n, double length, size_t v,
+           VertexCurvature& out) {
+  const double big_w = 1 + h.hu * h.hu + h.hv * h.hv;
+  Eigen::Matrix2d first, second;
+  first << 1 + h.hu * h.hu, h.hu * h.hv, h.hu * h.hv, 1 + h.hv * h.hv;
+  second << h.huu, h.huv, h.huv, h.hvv;
+  second /= std::sqrt(big_w);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
+  // w points outwards, so a convex surface bends towards −w and has negative eigenvalues: flip the signs,
+  // which makes the smaller eigenvalue k1.
+  out.k1[v] = -solver.eigenvalues()(0) / length;
+  out.k2[v] = -solver.eigenvalues()(1) / length;
+  out.mean[v] = (out.k1[v] + out.k2[v]) / 2;
+  out.gaussian[v] = out.k1[v] * out.k2[v];
+  out.rms[v] = std::sqrt((out.k1[v] * out.k1[v] + out.k2[v] * out.k2[v]) / 2);
+  const Vec3 tangent_u = e1 + h.hu * n, tangent_v = e2 + h.hv * n;
+  const Eigen::Matrix2d& x = solver.eigenvectors();
+  out.dir1[v] = (x(0, 0) * tangent_u + x(1, 0) * tangent_v).normalized();
+  out.dir2[v] = (x(0, 1) * tangent_u + x(1, 1) * tangent_v).normalized();
+}
+
+}  // namespace
+
+VertexCurvature estimate_curvature(const TriMesh& mesh) {
+  const size_t nv = mesh.vertices.size();
+  const Csr faces = vertex_faces(mesh);
+  const Csr neighbours = vertex_neighbours(mesh, faces);
+  const std::vector<Vec3> normals = vertex_normals(mesh);
+
+  VertexCurvature out;
+  for (auto* values : {&out.k1, &out.k2, &out.mean, &out.gaussian, &out.rms}) values->assign(nv, 0.0);
+  out.dir1.assign(nv, Vec3::Zero());
+  out.dir2.assign(nv, Vec3::Zero());
+
+  std::vector<int32_t> mark(nv, -1);  // mark[q] == v: q is already in v's ring (or is v)
+  std::vector<int32_t> ring;
+  std::vector<Vec3> points;
+  for (size_t vi = 0; vi < nv; ++vi) {
+    const auto v = static_cast<int32_t>(vi);
+    const Vec3& n = normals[v];
+    if (n.isZero()) continue;
+    // The fit is invariant under rotations about n (its monomials span a rotation-invariant space), so any
+    // tangent basis will do.
+    const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+    out.dir1[v] = e1;
+    out.dir2[v] = e2;
+
+    const Vec3& p = mesh.vertices[v];
+    ring.clear();
+    mark[v] = v;
+    double length = 0;
+    for (const int32_t* q = neighbours.begin(v); q != neighbours.end(v); ++q) {
+      mark[*q] = v;
+      ring.push_back(*q);
+      length += (mesh.vertices[*q] - p).norm();
+    }
+    length /= static_cast<double>(ring.size());
+    if (!(length > 0)) continue;
+    // Adds the neighbours of ring[from, to): ring k + 1 from ring k and the vertices ring k added.
+    const auto grow = [&](size_t from, size_t to) {
+      for (size_t i = from; i < to; ++i)
+        for (const int32_t* q = neighbours.begin(ring[i]); q != neighbours.end(ring[i]); ++q)
+          if (mark[*q] != v) {
+            mark[*q] = v;
+            ring.push_back(*q);
+          }
+    };
+    // Appends the local coordinates of the facing vertices in ring[from, end).
+    const auto collect = [&](size_t from) {
+      for (size_t i = from; i < ring.size(); ++i) {
+        const int32_t q = ring[i];
+        if (normals[q].dot(n) <= kFacingMargin) continue;
+        const Vec3 d = (mesh.vertices[q] - p) / length;
+        points.emplace_back(d.dot(e1), d.dot(e2), d.dot(n));
+      }
+    };
+    const size_t one_ring = ring.size();
+    grow(0, one_ring);
+    const size_t two_ring = ring.size();
+    points.clear();
+    collect(0);
+    if (points.size() < 6) {
+      grow(one_ring, two_ring);
+      collect(two_ring);
+    }
+    if (const std::optional<HeightFit> fit = fit_height(points)) store(*fit, e1, e2, n, length, vi, out);
+  }
+  return out;
+}
+
+std::vector<double> measure_values(const VertexCurvature& curvature, CurvatureMeasure measure) {
+  const auto absolute = [](std::vector<double> values) {
+    for (double& c : values) c = std::abs(c);
+    return values;
+  };
+  switch (measure) {
+    case CurvatureMeasure::gaussian:
+      return curvature.gaussian;
+    case CurvatureMeasure::abs_gaussian:
+      return absolute(curvature.gaussian);
+    case CurvatureMeasure::mean:
+      return curvature.mean;
+    case CurvatureMeasure::abs_mean:
+      return absolute(curvature.mean);
+    case CurvatureMeasure::rms:
+      return curvature.rms;
+  }
+  throw std::invalid_argument("curvature: unknown measure");
+}
+
+std::vector<double> scale_to_unit(const std::vector<double>& values) {
+  if (values.empty()) return {};
+  if (!std::all_of(values.begin(), values.end(), [](double c) { return std::isfinite(c); }))
+    throw std::invalid_argument("scale_to_unit: non-finite value");
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  const double min = *lo, range = *hi - *lo;
+  std::vector<double> unit(values.size(), 0.0);
+  if (range > 0)
+    for (size_t i = 0; i < values.size(); ++i) unit[i] = (values[i] - min) / range;
+  return unit;
+}
+
+std::vector<double> equalize_histogram(const std::vector<double>& unit_values, int bins) {
+  if (bins < 1)
+    throw std::invalid_argument("equalize_histogram: bins must be at least 1, not " + std::to_string(bins));
+  if (unit_values.empty()) return {};
+  std::vector<int> bin(unit_values.size());
+  std::vector<size_t> cumulative(bins, 0);
+  for (size_t i = 0; i < unit_values.size(); ++i) {
+    const double c = unit_values[i];
+    if (!(c >= 0 && c <= 1))
+      throw std::invalid_argument("equalize_histogram: value " + std::to_string(c) + " at " +
+                                  std::to_string(i) + " is outside [0, 1]");
+    bin[i] = std::min(bins - 1, static_cast<int>(bins * c));
+    ++cumulative[bin[i]];
+  }
+  for (int b = 1; b < bins; ++b) cumulative[b] += cumulative[b - 1];
+  const size_t n = unit_values.size();
+  // C_min: the count of the lowest occupied bin.
+  const size_t c_min = *std::find_if(cumulative.begin(), cumulative.end(), [](size_t c) { return c > 0; });
+  std::vector<double> equalized(n, 0.0);
+  if (n > c_min)
+    for (size_t i = 0; i < n; ++i)
+      equalized[i] = static_cast<double>(cumulative[bin[i]] - c_min) / static_cast<double>(n - c_min);
+  return equalized;
+}
+
+}  // namespace vesselmesh
