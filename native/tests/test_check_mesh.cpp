@@ -4,6 +4,8 @@
 // geometric case is run at the scales 1e-3, 1 and 1e3.
 #include <gtest/gtest.h>
 
+#include "surfaces.hpp"
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -12,15 +14,12 @@
 #include "vesselmesh/geometry/predicates.hpp"
 
 using namespace vesselmesh;
+using surfaces::scaled;
+using surfaces::torus;
 
 namespace {
 
 const double kScales[] = {1e-3, 1.0, 1e3};
-
-TriMesh scaled(TriMesh mesh, double s) {
-  for (Vec3& p : mesh.vertices) p *= s;
-  return mesh;
-}
 
 TriMesh flipped(TriMesh mesh) {
   for (Tri& f : mesh.faces) std::swap(f[1], f[2]);
@@ -66,21 +65,6 @@ TriMesh cube() {
   add_quad(m, 0, 4, 6, 2);  // x = 0
   add_quad(m, 1, 3, 7, 5);  // x = 1
   return m;
-}
-
-/// A torus (radii 2 and 0.5 round the z axis) as an n × m grid of quads.
-TriMesh torus(int n, int m) {
-  TriMesh t;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      t.vertices.push_back(Vec3((2 + 0.5 * std::cos(v)) * std::cos(u), (2 + 0.5 * std::cos(v)) * std::sin(u),
-                                0.5 * std::sin(v)));
-    }
-  auto at = [&](int i, int j) { return static_cast<int32_t>((i % n) * m + j % m); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) add_quad(t, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-  return t;
 }
 
 /// The unit sphere with `stacks` bands of `slices` quads between two poles (vertex 0 north, last south).
@@ -187,7 +171,7 @@ TEST(CheckTopology, FlippedSurfaceHasNegativeVolume) {
 
 TEST(CheckTopology, TorusHasEulerCharacteristicZeroAndGenusOne) {
   for (double s : kScales) {
-    const TopologyReport t = check_topology(scaled(torus(96, 48), s));
+    const TopologyReport t = check_topology(scaled(torus(96, 48, 2.0, 0.5), s));
     EXPECT_TRUE(t.closed_manifold());
     EXPECT_EQ(t.euler_characteristic, 0);
     EXPECT_EQ(t.genus, 1);
@@ -341,7 +325,7 @@ TEST(SelfIntersections, ClosedSurfacesWithoutSelfContactHaveNone) {
     EXPECT_EQ(pairs(scaled(tetrahedron(), s)), 0);
     EXPECT_EQ(pairs(scaled(octahedron(), s)), 0);
     EXPECT_EQ(pairs(scaled(cube(), s)), 0);
-    EXPECT_EQ(pairs(scaled(torus(48, 24), s)), 0);
+    EXPECT_EQ(pairs(scaled(torus(48, 24, 2.0, 0.5), s)), 0);
     EXPECT_EQ(pairs(scaled(uv_sphere(100, 200), s)), 0);
   }
 }

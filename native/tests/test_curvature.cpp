@@ -4,6 +4,8 @@
 // equalisation on known inputs.
 #include <gtest/gtest.h>
 
+#include "surfaces.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,6 +25,8 @@
 #include "vesselmesh/subdivide/loop.hpp"
 
 using namespace vesselmesh;
+using surfaces::scaled;
+using surfaces::torus;
 
 namespace {
 
@@ -56,11 +60,6 @@ void expect_valid(const VertexCurvature& c, size_t vertices, const std::string& 
                      << " rms " << c.rms[first];
 }
 
-TriMesh scaled(TriMesh mesh, double scale) {
-  for (Vec3& p : mesh.vertices) p *= scale;
-  return mesh;
-}
-
 /// An icosahedron refined by `levels` Loop levels with every vertex then pushed onto the sphere of radius R:
 /// valences 5 and 6, slightly uneven edges.
 TriMesh icosphere(int levels, double radius) {
@@ -91,28 +90,6 @@ TriMesh cylinder(int around, int rings, double radius) {
     for (int j = 0; j < around; ++j) {
       m.faces.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
       m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
-    }
-  return m;
-}
-
-/// A torus about the z axis, `sections` rings of `corners` vertices (vertex i·corners + j at minor angle
-/// θ = 2πj/corners from the outer equator), faces outwards.
-TriMesh torus(int sections, int corners, double major, double minor) {
-  TriMesh m;
-  for (int i = 0; i < sections; ++i) {
-    const double phi = 2 * M_PI * i / sections;
-    const Vec3 radial(std::cos(phi), std::sin(phi), 0);
-    for (int j = 0; j < corners; ++j) {
-      const double theta = 2 * M_PI * j / corners;
-      m.vertices.push_back(major * radial +
-                           minor * (std::cos(theta) * radial + std::sin(theta) * Vec3::UnitZ()));
-    }
-  }
-  const auto id = [&](int i, int j) { return static_cast<int32_t>((i % sections) * corners + j % corners); };
-  for (int i = 0; i < sections; ++i)
-    for (int j = 0; j < corners; ++j) {
-      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return m;
 }

@@ -2,6 +2,8 @@
 // LoopT as an independent reference, boundary rules, limit positions, and the shrinkage of a square tube.
 #include <gtest/gtest.h>
 
+#include "surfaces.hpp"
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <algorithm>
@@ -17,6 +19,7 @@
 #include "vesselmesh/subdivide/loop.hpp"
 
 using namespace vesselmesh;
+using surfaces::torus;
 
 namespace {
 
@@ -89,28 +92,6 @@ TriMesh irregular_cube() {
     }
   }
   orient_outwards(m);
-  return m;
-}
-
-/// A torus of `sections` rings with `corners` vertices each (vertex i·corners + j), major radius R, minor
-/// radius r, faces outwards. Quad (i, j), (i+1, j), (i+1, j+1), (i, j+1) is cut along (i, j)–(i+1, j+1), as
-/// the pipeline cuts tube quads, so every vertex has valence 6.
-TriMesh torus(int sections, int corners, double R, double r) {
-  TriMesh m;
-  for (int i = 0; i < sections; ++i) {
-    const double theta = 2 * M_PI * i / sections;
-    const Vec3 radial(std::cos(theta), std::sin(theta), 0);
-    for (int j = 0; j < corners; ++j) {
-      const double phi = 2 * M_PI * j / corners;
-      m.vertices.push_back(R * radial + r * (std::cos(phi) * radial + std::sin(phi) * Vec3::UnitZ()));
-    }
-  }
-  const auto id = [&](int i, int j) { return static_cast<int32_t>((i % sections) * corners + j % corners); };
-  for (int i = 0; i < sections; ++i)
-    for (int j = 0; j < corners; ++j) {
-      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
   return m;
 }
 

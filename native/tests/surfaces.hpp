@@ -1,0 +1,39 @@
+#pragma once
+// Analytic test surfaces shared by the tests of the surface stages.
+
+#include <cmath>
+
+#include "vesselmesh/mesh/tri_mesh.hpp"
+
+namespace vesselmesh::surfaces {
+
+/// `mesh` with every vertex multiplied by `scale`.
+inline TriMesh scaled(TriMesh mesh, double scale) {
+  for (Vec3& p : mesh.vertices) p *= scale;
+  return mesh;
+}
+
+/// A torus about the z axis: `sections` rings of `corners` vertices, vertex i·corners + j at major angle
+/// 2πi/sections and minor angle θ = 2πj/corners from the outer equator; major radius R, minor radius r;
+/// faces outwards. Quad (i, j), (i+1, j), (i+1, j+1), (i, j+1) is cut along (i, j)–(i+1, j+1), as the
+/// pipeline cuts tube quads, so every vertex has valence 6.
+inline TriMesh torus(int sections, int corners, double R, double r) {
+  TriMesh m;
+  for (int i = 0; i < sections; ++i) {
+    const double phi = 2 * M_PI * i / sections;
+    const Vec3 radial(std::cos(phi), std::sin(phi), 0);
+    for (int j = 0; j < corners; ++j) {
+      const double theta = 2 * M_PI * j / corners;
+      m.vertices.push_back(R * radial + r * (std::cos(theta) * radial + std::sin(theta) * Vec3::UnitZ()));
+    }
+  }
+  const auto id = [&](int i, int j) { return static_cast<int32_t>((i % sections) * corners + j % corners); };
+  for (int i = 0; i < sections; ++i)
+    for (int j = 0; j < corners; ++j) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+}  // namespace vesselmesh::surfaces
