@@ -2,6 +2,7 @@
 // Analytic test surfaces shared by the tests of the surface stages.
 
 #include <cmath>
+#include <vector>
 
 #include "vesselmesh/mesh/tri_mesh.hpp"
 
@@ -34,6 +35,22 @@ inline TriMesh torus(int sections, int corners, double R, double r) {
       m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return m;
+}
+
+/// Faces of a grid of (nx + 1) × (ny + 1) vertices, vertex (i, j) at index j·(nx + 1) + i, each quad cut
+/// along alternating diagonals (valences 4 to 8), counter-clockwise when i runs along x and j along y.
+inline std::vector<Tri> grid_faces(int nx, int ny) {
+  std::vector<Tri> faces;
+  const auto id = [&](int i, int j) { return static_cast<int32_t>(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0)
+        faces.insert(faces.end(), {Tri{a, b, c}, Tri{a, c, d}});
+      else
+        faces.insert(faces.end(), {Tri{a, b, d}, Tri{b, c, d}});
+    }
+  return faces;
 }
 
 }  // namespace vesselmesh::surfaces

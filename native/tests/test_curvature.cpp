@@ -104,18 +104,7 @@ TriMesh height_grid(int n, const std::function<double(double, double)>& f) {
       const double x = static_cast<double>(i - n) / n, y = static_cast<double>(j - n) / n;
       m.vertices.emplace_back(x, y, f(x, y));
     }
-  const auto id = [&](int i, int j) { return static_cast<int32_t>(j * side + i); };
-  for (int j = 0; j + 1 < side; ++j)
-    for (int i = 0; i + 1 < side; ++i) {
-      const int32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        m.faces.push_back({a, b, c});
-        m.faces.push_back({a, c, d});
-      } else {
-        m.faces.push_back({a, b, d});
-        m.faces.push_back({b, c, d});
-      }
-    }
+  m.faces = surfaces::grid_faces(side - 1, side - 1);
   return m;
 }
 

@@ -104,18 +104,7 @@ TriMesh tilted_grid(int nx, int ny, const Vec3& origin, const Vec3& u, const Vec
       const double s = i + 0.25 * std::sin(1.7 * i + j), t = j + 0.25 * std::cos(2.3 * j + i);
       m.vertices.push_back(origin + s * u + t * v);
     }
-  const auto id = [&](int i, int j) { return static_cast<int32_t>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        m.faces.push_back({a, b, c});
-        m.faces.push_back({a, c, d});
-      } else {
-        m.faces.push_back({a, b, d});
-        m.faces.push_back({b, c, d});
-      }
-    }
+  m.faces = surfaces::grid_faces(nx, ny);
   return m;
 }
 
