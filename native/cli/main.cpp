@@ -94,7 +94,24 @@ int main(int argc, char** argv) {
   CLI::App* mesh = app.add_subcommand("mesh", "Build the vessel surface of a centerline");
   mesh->add_option("IN", mesh_in, "centerline file")->required();
   mesh->add_option("-o,--output", mesh_out, "surface file: .ply, .obj or .stl")->required();
-  mesh->add_option("--levels", mesh_options.levels, "Loop subdivision levels")->check(CLI::Range(0, 4));
+  SubdivisionOptions& subdivision = mesh_options.subdivision;
+  mesh->add_option("--levels", subdivision.levels, "Loop subdivision levels")->check(CLI::Range(0, 4));
+  mesh->add_option("--method", subdivision.method, "which triangles each level splits")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Refinement>{
+          {"curvature", Refinement::curvature}, {"uniform", Refinement::uniform}, {"dihedral", Refinement::dihedral}}));
+  mesh->add_option("--uniform-levels", subdivision.uniform_levels,
+                   "the first levels split every triangle (adaptive methods)")
+      ->check(CLI::NonNegativeNumber);
+  mesh->add_option("--threshold", subdivision.threshold,
+                   "curvature method: split triangles with a vertex at or above this equalised curvature")
+      ->check(CLI::Range(0.0, 1.0));
+  mesh->add_option("--measure", subdivision.measure, "curvature method: the measure to equalise and threshold")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, CurvatureMeasure>{
+          {"gaussian", CurvatureMeasure::gaussian}, {"abs-gaussian", CurvatureMeasure::abs_gaussian},
+          {"mean", CurvatureMeasure::mean}, {"abs-mean", CurvatureMeasure::abs_mean}, {"tube-departure", CurvatureMeasure::tube_departure}, {"rms", CurvatureMeasure::rms}}));
+  mesh->add_option("--angle", subdivision.angle_degrees,
+                   "dihedral method: split triangles with an interior dihedral angle below this, in degrees")
+      ->check(CLI::Range(0.0, 180.0));
   mesh->add_option("--sampling", mesh_options.sampling.method, "cross-section sampling")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, Sampling>{{"bidirectional", Sampling::bidirectional},

@@ -52,6 +52,28 @@ py::dict data_dict(const CenterlineData& d) {
   return out;
 }
 
+py::dict distribution_dict(const Distribution& d) {
+  py::dict out;
+  out["min"] = d.min;
+  out["median"] = d.median;
+  out["p95"] = d.p95;
+  out["max"] = d.max;
+  out["mean"] = d.mean;
+  out["count"] = d.count;
+  return out;
+}
+
+/// The enum value a name stands for; ValueError listing the names otherwise.
+template <typename E>
+E choice(const char* what, const std::string& name, std::initializer_list<std::pair<const char*, E>> names) {
+  std::string known;
+  for (const auto& [n, value] : names) {
+    if (name == n) return value;
+    known += std::string(known.empty() ? "" : ", ") + "'" + n + "'";
+  }
+  throw py::value_error(std::string(what) + " must be one of " + known + ", got '" + name + "'");
+}
+
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -182,17 +204,30 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
-         const std::string& caps, bool curvature) {
+         const std::string& caps, bool curvature, const std::string& method, int uniform_levels, double threshold,
+         const std::string& measure, double angle) {
         MeshOptions o;
-        o.levels = levels;
+        o.subdivision.levels = levels;
+        o.subdivision.method = choice<Refinement>("method", method,
+                                                  {{"curvature", Refinement::curvature},
+                                                   {"uniform", Refinement::uniform},
+                                                   {"dihedral", Refinement::dihedral}});
+        o.subdivision.uniform_levels = uniform_levels;
+        o.subdivision.threshold = threshold;
+        o.subdivision.measure = choice<CurvatureMeasure>("measure", measure,
+                                                         {{"rms", CurvatureMeasure::rms},
+                                                          {"gaussian", CurvatureMeasure::gaussian},
+                                                          {"abs-gaussian", CurvatureMeasure::abs_gaussian},
+                                                          {"mean", CurvatureMeasure::mean},
+                                                          {"abs-mean", CurvatureMeasure::abs_mean}, {"tube-departure", CurvatureMeasure::tube_departure}});
+        o.subdivision.angle_degrees = angle;
         o.curvature = curvature;
-        if (sampling != "bidirectional" && sampling != "unidirectional")
-          throw std::invalid_argument("sampling must be 'bidirectional' or 'unidirectional'");
-        o.sampling.method = sampling == "bidirectional" ? Sampling::bidirectional : Sampling::unidirectional;
+        o.sampling.method = choice<Sampling>("sampling", sampling,
+                                             {{"bidirectional", Sampling::bidirectional},
+                                              {"unidirectional", Sampling::unidirectional}});
         o.sampling.alpha = alpha;
         o.sampling.beta = beta;
-        if (caps != "flat" && caps != "open") throw std::invalid_argument("caps must be 'flat' or 'open'");
-        o.caps = caps == "flat" ? Caps::flat : Caps::open;
+        o.caps = choice<Caps>("caps", caps, {{"flat", Caps::flat}, {"open", Caps::open}});
         MeshResult r;
         {
           py::gil_scoped_release release;
@@ -207,13 +242,19 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         for (const VertexProperty& p : r.mesh.vertex_properties)
           properties[p.name.c_str()] = to_array(p.values.data(), {static_cast<py::ssize_t>(p.values.size())});
         out["curvature"] = properties;
+        out["transition"] = to_array(r.transition.data(), {static_cast<py::ssize_t>(r.transition.size())});
         return out;
       },
       py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
+      py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
+      py::arg("measure") = "tube-departure", py::arg("angle") = 160.0,
       "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
-      "from outside), stats (counts and per-stage times) and curvature (with curvature=True: k1, k2, mean,\n"
-      "gaussian, rms as (V,) float32 arrays, 1/length, convex positive; else empty).");
+      "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
+      "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
+      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or 'dihedral';\n"
+      "threshold and measure ('rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for curvature, angle\n"
+      "(degrees) for dihedral; the first uniform_levels levels split every triangle.");
 
   m.def(
       "check",
@@ -228,6 +269,25 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       },
       py::arg("vertices"), py::arg("faces"), py::arg("graph") = nullptr,
       "What `vesselmesh check --json` reports for a surface (radius fidelity when a graph is given).");
+
+  m.def(
+      "surface_distance",
+      [](const Points& vertices, const Indices& faces, const Points& to_vertices, const Indices& to_faces,
+         const CenterlineGraph& graph) {
+        const TriMesh from = mesh_from_arrays(vertices, faces), to = mesh_from_arrays(to_vertices, to_faces);
+        SurfaceDistanceReport report;
+        {
+          py::gil_scoped_release release;
+          report = surface_distance(from, to, graph);
+        }
+        py::dict out;
+        out["vertices"] = distribution_dict(report.vertices);
+        out["centroids"] = distribution_dict(report.centroids);
+        return out;
+      },
+      py::arg("vertices"), py::arg("faces"), py::arg("to_vertices"), py::arg("to_faces"), py::arg("graph"),
+      "Distance from a surface (sampled at its vertices and face centroids) to another, relative to the local\n"
+      "radius of the graph: {'vertices': {...}, 'centroids': {...}}, each with min, median, p95, max, mean, count.");
 
   m.def(
       "radius_error",

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 
 using namespace vesselmesh;
@@ -577,6 +578,46 @@ TEST(RadiusFidelity, UnionOfConesTakesTheSmallestSignedDistance) {
 }
 
 // --- the whole report -------------------------------------------------------------------------------
+
+// --- distance between surfaces ----------------------------------------------------------------------
+
+TEST(SurfaceDistance, ASurfaceIsAtDistanceZeroFromItself) {
+  const TriMesh mesh = closed_tube(Vec3::Zero(), Vec3(10, 0, 0), 1, 20, 32);
+  const SurfaceDistanceReport d =
+      surface_distance(mesh, mesh, straight_runs({{Vec3::Zero(), Vec3(10, 0, 0)}}, 1, 1));
+  EXPECT_EQ(d.vertices.max, 0);
+  EXPECT_LT(d.centroids.max, 1e-12);
+  EXPECT_EQ(d.centroids.count, static_cast<int64_t>(mesh.faces.size()));
+}
+
+TEST(SurfaceDistance, ATenPercentWiderTubeIsATenthOfTheRadiusAway) {
+  for (double s : kScales) {
+    const TriMesh narrow = closed_tube(Vec3::Zero(), Vec3(10 * s, 0, 0), s, 20, 32);
+    const TriMesh wide = closed_tube(Vec3::Zero(), Vec3(10 * s, 0, 0), 1.1 * s, 20, 32);
+    const SurfaceDistanceReport d =
+        surface_distance(wide, narrow, straight_runs({{Vec3::Zero(), Vec3(10 * s, 0, 0)}}, s, 1));
+    // Ring vertices lie straight out from the narrow tube's; the two cap centres are shared.
+    EXPECT_NEAR(d.vertices.median, 0.1, 1e-9) << s;
+    EXPECT_NEAR(d.vertices.max, 0.1, 1e-9) << s;
+    EXPECT_EQ(d.vertices.min, 0) << s;
+  }
+}
+
+TEST(ClosestPoint, EveryRegionOfATriangle) {
+  const Vec3 a(0, 0, 0), b(2, 0, 0), c(0, 2, 0);
+  const std::vector<std::pair<Vec3, Vec3>> cases = {
+      {{0.5, 0.5, 3}, {0.5, 0.5, 0}},  // above the face
+      {{-1, -1, 1}, a},                // beyond each corner
+      {{3, -1, 0}, b},
+      {{-1, 3, 0}, c},
+      {{1, -2, 0}, {1, 0, 0}},  // beside each edge
+      {{2, 2, 0}, {1, 1, 0}},
+      {{-2, 1, 5}, {0, 1, 0}}};
+  for (const auto& [p, expected] : cases)
+    EXPECT_LT((closest_point_on_triangle(p, a, b, c) - expected).norm(), 1e-15) << p.transpose();
+  // No area: the nearest point of its edges.
+  EXPECT_LT((closest_point_on_triangle(Vec3(1, 1, 0), a, b, Vec3(1, 0, 0)) - Vec3(1, 0, 0)).norm(), 1e-15);
+}
 
 TEST(CheckMesh, ReportJsonHoldsEveryPartAndFidelityOnlyWithACenterline) {
   const TriMesh mesh = closed_tube(Vec3::Zero(), Vec3(10, 0, 0), 1, 20, 16);

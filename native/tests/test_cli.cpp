@@ -151,3 +151,30 @@ TEST(Cli, MeshWithCurvatureWritesTheFiveMeasuresIntoThePly) {
   const CliRun check = run_cli("check '" + out + "'");
   EXPECT_EQ(check.status, 0) << check.output;
 }
+
+TEST(Cli, MeshMethodsGiveFewerTrianglesThanUniformAndReportTheirTagging) {
+  const std::string in = vesselmesh::test::test_data("bifurcation.swc");
+  const auto triangles = [&](const std::string& options) {
+    const std::string stats = testing::TempDir() + "stats.json";
+    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' --levels 2 " + options +
+                               " --stats-json '" + stats + "'");
+    EXPECT_EQ(run.status, 0) << options << ": " << run.output;
+    std::ifstream file(stats);
+    const nlohmann::json j = nlohmann::json::parse(file);
+    EXPECT_EQ(j["tagged_fraction"].size(), 2u) << options;
+    return j["triangles"].get<int64_t>();
+  };
+  const int64_t uniform = triangles("--method uniform");
+  EXPECT_LT(triangles("--method curvature --uniform-levels 0 --threshold 0.9 --measure abs-gaussian"), uniform);
+  EXPECT_LT(triangles("--method dihedral --uniform-levels 0 --angle 150"), uniform);
+  EXPECT_EQ(triangles("--method curvature --threshold 0"), uniform);
+}
+
+TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
+  const std::string in = vesselmesh::test::test_data("bifurcation.swc");
+  for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",
+                              "--uniform-levels -1"}) {
+    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' " + options);
+    EXPECT_NE(run.status, 0) << options;
+  }
+}

@@ -111,7 +111,8 @@ TriMesh height_grid(int n, const std::function<double(double, double)>& f) {
 /// The pipeline's surface of a straight vessel of radius `scale` along z from 0 to 40·scale, with flat caps.
 TriMesh vessel_tube(double scale, int levels) {
   MeshOptions options;
-  options.levels = levels;
+  options.subdivision.levels = levels;
+  options.subdivision.method = Refinement::uniform;
   return mesh_centerline(build_graph(fixtures::straight(40, scale)), options).mesh;
 }
 
@@ -407,7 +408,7 @@ TEST(Curvature, CoarseFourSidedBaseTubeGivesFiniteValues) {
   // every value finite.
   for (double scale : kScales) {
     MeshOptions options;
-    options.levels = 0;
+    options.subdivision.levels = 0;
     for (const auto& centerline : {fixtures::straight(40, scale), fixtures::bifurcation(scale)}) {
       const TriMesh m = mesh_centerline(build_graph(centerline), options).mesh;
       expect_valid(estimate_curvature(m), m.vertices.size(), "base mesh scale " + std::to_string(scale));

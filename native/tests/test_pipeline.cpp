@@ -15,7 +15,7 @@ namespace {
 
 MeshResult mesh_at(const CenterlineGraph& g, int levels, Caps caps = Caps::flat) {
   MeshOptions o;
-  o.levels = levels;
+  o.subdivision.levels = levels;
   o.caps = caps;
   return mesh_centerline(g, o);
 }
@@ -97,10 +97,14 @@ TEST(Pipeline, SeveralComponentsGiveOneSurfaceEach) {
 
 TEST(Pipeline, StatsCountEveryStage) {
   const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
-  const MeshResult r = mesh_at(g, 2);
-  ASSERT_EQ(r.stages.size(), 5u);  // tile, triangulate, two subdivision levels, limit
+  MeshOptions o;
+  o.subdivision.method = Refinement::uniform;
+  o.curvature = true;
+  const MeshResult r = mesh_centerline(g, o);
+  ASSERT_EQ(r.stages.size(), 4u);  // tile, triangulate, subdivide, curvature
+  EXPECT_EQ(r.stages[1].faces * 16, r.stages[2].faces);  // two uniform levels
   EXPECT_EQ(r.stages.back().faces, static_cast<int64_t>(r.mesh.faces.size()));
-  EXPECT_EQ(r.stages[2].faces * 4, r.stages[3].faces);
+  EXPECT_EQ(r.tagged, std::vector<double>({1.0, 1.0}));
 }
 
 // --- shared data sets --------------------------------------------------------------------------------

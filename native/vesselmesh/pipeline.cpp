@@ -1,12 +1,12 @@
 #include "vesselmesh/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "vesselmesh/curvature/curvature.hpp"
-#include "vesselmesh/subdivide/loop.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -18,8 +18,6 @@ double subdivision_radius_scale() {
 }
 
 MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options) {
-  if (options.levels < 0 || options.levels > 4)
-    throw std::invalid_argument("levels must be 0 to 4, got " + std::to_string(options.levels));
   using Clock = std::chrono::steady_clock;
   MeshResult result;
   auto record = [&](const char* stage, Clock::time_point start, int64_t vertices, int64_t faces) {
@@ -43,16 +41,12 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
 
-  for (int level = 1; level <= options.levels; ++level) {
-    start = Clock::now();
-    result.mesh = loop_subdivide(result.mesh);
-    record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
-  }
-  // Every level's vertices moved onto the limit surface: the radius no longer depends on the level.
   start = Clock::now();
-  result.mesh = loop_limit(result.mesh);
-  record("limit", start, static_cast<int64_t>(result.mesh.vertices.size()),
+  SubdividedMesh subdivided = subdivide(result.mesh, options.subdivision);
+  result.mesh = std::move(subdivided.mesh);
+  result.transition = std::move(subdivided.transition);
+  result.tagged = std::move(subdivided.tagged);
+  record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
   if (options.curvature) {
     start = Clock::now();
@@ -74,6 +68,8 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["sections"] = result.sections;
   j["joint_patches"] = result.joint_patches;
   j["absorbed_branches"] = result.absorbed_branches;
+  j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
+  j["tagged_fraction"] = result.tagged;
   double total = 0;
   for (const StageStats& s : result.stages) {
     j["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"vertices", s.vertices}, {"faces", s.faces}});

@@ -1,6 +1,7 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
-//   graph → sample → frames → tile (base mesh) → triangulate → subdivide → limit [→ curvature]
+//   graph → sample → frames → tile (base mesh) → triangulate → subdivide (uniform or adaptive, onto the
+//   Loop limit surface) [→ curvature]
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/tri_mesh.hpp"
+#include "vesselmesh/subdivide/adaptive.hpp"
 #include "vesselmesh/tile/base_mesh.hpp"
 
 namespace vesselmesh {
@@ -15,7 +17,7 @@ namespace vesselmesh {
 struct MeshOptions {
   SamplingOptions sampling;
   Caps caps = Caps::flat;
-  int levels = 2;          ///< uniform Loop levels, 0..4
+  SubdivisionOptions subdivision;
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
 };
 
@@ -27,6 +29,8 @@ struct StageStats {
 
 struct MeshResult {
   TriMesh mesh;
+  std::vector<uint8_t> transition;  ///< per face: 1 for a crack-closing triangle of adaptive subdivision
+  std::vector<double> tagged;       ///< per level: the fraction of triangles it tagged for splitting
   std::vector<StageStats> stages;
   int64_t sections = 0, joint_patches = 0, absorbed_branches = 0;
 };

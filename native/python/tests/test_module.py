@@ -112,7 +112,9 @@ def test_mesh_of_a_loop_has_genus_one(project_data):
     assert report["topology"]["genus"] == 1
 
 
-@pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7)])
+@pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
+                                    dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
+                                    dict(angle=-1.0)])
 def test_mesh_rejects_unknown_options(project_data, kwargs):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     with pytest.raises((ValueError, vm.InputError)):
@@ -142,3 +144,25 @@ def test_mesh_with_curvature_returns_the_five_measures_of_a_tube(project_data):
     assert np.all(k["k1"] >= k["k2"])
     assert np.median(k["mean"]) > 0  # a vessel is convex across its axis
     assert vm.mesh(graph, levels=1)["curvature"] == {}
+
+
+@pytest.mark.parametrize("method", ["curvature", "dihedral"])
+def test_adaptive_methods_give_fewer_triangles_on_the_uniform_surface(project_data, method):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    uniform = vm.mesh(graph, levels=2, method="uniform")
+    adaptive = vm.mesh(graph, levels=2, method=method, uniform_levels=0, angle=150.0)
+    assert len(adaptive["faces"]) < len(uniform["faces"])
+    assert vm.check(adaptive["vertices"], adaptive["faces"])["closed_manifold"]
+    assert adaptive["transition"].shape == (len(adaptive["faces"]),) and adaptive["transition"].any()
+    assert not uniform["transition"].any()
+    distance = vm.surface_distance(adaptive["vertices"], adaptive["faces"], uniform["vertices"],
+                                   uniform["faces"], graph)
+    assert distance["vertices"]["max"] < 1e-9  # adaptive vertices are vertices of the uniform surface
+    assert 0 < distance["centroids"]["max"] < 0.5  # unsplit triangles are flat chords of it
+    assert distance["centroids"]["count"] == len(adaptive["faces"])
+
+
+def test_threshold_zero_is_uniform(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    np.testing.assert_array_equal(vm.mesh(graph, levels=2, threshold=0.0)["faces"],
+                                  vm.mesh(graph, levels=2, method="uniform")["faces"])

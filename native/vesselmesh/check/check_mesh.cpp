@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "vesselmesh/check/bvh.hpp"
+#include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 
@@ -465,6 +466,33 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   }
   r.relative_error = distribution(std::move(signed_error));
   r.abs_relative_error = distribution(std::move(abs_error));
+  return r;
+}
+
+SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, const CenterlineGraph& centerline) {
+  require_valid_indices(from);
+  require_valid_indices(to);
+  SurfaceDistanceReport r;
+  if (centerline.edges.empty() || to.faces.empty()) return r;
+  std::vector<Box> boxes(to.faces.size());
+  for (std::size_t f = 0; f < to.faces.size(); ++f)
+    for (int32_t v : to.faces[f]) boxes[f].extend(to.vertices[v]);
+  const Bvh bvh(boxes);
+  const RoundCones cones(centerline);
+  const auto relative_distance = [&](const Vec3& p) {
+    double best = kInf;
+    bvh.search([&](const Box& b) { return b.signed_distance(p); }, best, [&](int32_t f) {
+      const Triangle t = corners(to, to.faces[f]);
+      best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
+    });
+    return best / cones.nearest(p).radius;
+  };
+  std::vector<double> at_vertices, at_centroids;
+  for (const Vec3& p : from.vertices) at_vertices.push_back(relative_distance(p));
+  for (const Tri& f : from.faces)
+    at_centroids.push_back(relative_distance((from.vertices[f[0]] + from.vertices[f[1]] + from.vertices[f[2]]) / 3));
+  r.vertices = distribution(std::move(at_vertices));
+  r.centroids = distribution(std::move(at_centroids));
   return r;
 }
 

@@ -89,6 +89,15 @@ QualityReport triangle_quality(const TriMesh& mesh);
 /// one radius of its section along its axis, or beyond it.
 FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline);
 
+/// How far one surface strays from another, relative to the vessel's size: the distance from each sample
+/// of `from` to the nearest point of `to`, divided by the local radius of the centerline (that of the
+/// nearest round cone). Samples: `from`'s vertices and its face centroids (the centroid shows the most a
+/// flat triangle can miss). For an adaptive surface against the uniform one of the same level.
+struct SurfaceDistanceReport {
+  Distribution vertices, centroids;
+};
+SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, const CenterlineGraph& centerline);
+
 CheckReport check_mesh(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr);
 /// The report as JSON text (what `vesselmesh check --json` prints).
 std::string report_json(const CheckReport& report, int indent = 2);

@@ -233,6 +233,14 @@ std::vector<double> measure_values(const VertexCurvature& curvature, CurvatureMe
       return absolute(curvature.mean);
     case CurvatureMeasure::rms:
       return curvature.rms;
+    case CurvatureMeasure::tube_departure: {
+      std::vector<double> values(curvature.k1.size());
+      for (std::size_t v = 0; v < values.size(); ++v) {
+        const double a = std::abs(curvature.k1[v]), b = std::abs(curvature.k2[v]);
+        values[v] = std::max(a, b) > 0 ? std::min(a, b) / std::max(a, b) : 0.0;
+      }
+      return values;
+    }
   }
   throw std::invalid_argument("curvature: unknown measure");
 }

@@ -39,8 +39,11 @@ struct VertexCurvature {
 VertexCurvature estimate_curvature(const TriMesh& mesh);
 
 /// The per-vertex scalars the adaptive stage can threshold (design §6.6): signed Gaussian curvature is the
-/// paper's choice; with it, saddles (K < 0, as at a bifurcation crotch) rank lowest.
-enum class CurvatureMeasure { gaussian, abs_gaussian, mean, abs_mean, rms };
+/// paper's choice; with it, saddles (K < 0, as at a bifurcation crotch) rank lowest. The others rank a
+/// thin vessel above a thick one of the same shape, as curvature is 1/length; tube_departure,
+/// min(|k1|, |k2|)/max(|k1|, |k2|), does not: 0 on a straight tube of any radius, about r·κ on a bend of
+/// curvature κ, 1 on a sphere or a symmetric saddle.
+enum class CurvatureMeasure { gaussian, abs_gaussian, mean, abs_mean, rms, tube_departure };
 
 /// The V values of `measure`.
 std::vector<double> measure_values(const VertexCurvature& curvature, CurvatureMeasure measure);
