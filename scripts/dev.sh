@@ -42,6 +42,13 @@ demo() {
   "$build/bin/vesselmesh" mesh "$build/demo/network.vtk" -o "$build/demo/network.ply" --levels 2 \
     --stats-json "$build/demo/stats.json"
   "$build/bin/vesselmesh" check "$build/demo/network.ply" --centerline "$build/demo/network.vtk"
+
+  echo "== the Blender add-on, installed into a fresh profile: the same network, coloured by curvature"
+  rm -rf "$build/demo/blender-profile"
+  BLENDER_USER_CONFIG="$build/demo/blender-profile/config" BLENDER_USER_SCRIPTS="$build/demo/blender-profile/scripts" \
+    blender -b --factory-startup --python-exit-code 1 --python addon/examples/batch.py -- \
+    --install "$build/vesselmesh.zip" --render "$build/demo/network.png" --blend "$build/demo/network.blend" \
+    "$build/demo/network.vtk" | grep -v -E "EGL|^Fra:|^ *Time:|^$"  # Blender's render progress and GPU chatter
 }
 
 run_tests() {

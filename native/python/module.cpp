@@ -11,6 +11,7 @@
 
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
@@ -49,6 +50,14 @@ py::dict data_dict(const CenterlineData& d) {
   out["edges"] = edges_array(d.edges);
   out["edge_radius"] = optional_vector(d.edge_radius);
   out["roots"] = to_array(d.roots.data(), {static_cast<py::ssize_t>(d.roots.size())});
+  return out;
+}
+
+/// Vertex properties as {name: (V,) float32}.
+py::dict property_dict(const std::vector<VertexProperty>& properties) {
+  py::dict out;
+  for (const VertexProperty& p : properties)
+    out[p.name.c_str()] = to_array(p.values.data(), {static_cast<py::ssize_t>(p.values.size())});
   return out;
 }
 
@@ -238,10 +247,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         out["faces"] = to_array(r.mesh.faces.empty() ? nullptr : r.mesh.faces.front().data(),
                                 {static_cast<py::ssize_t>(r.mesh.faces.size()), 3});
         out["stats"] = json_to_python(stats_json(r, -1));
-        py::dict properties;
-        for (const VertexProperty& p : r.mesh.vertex_properties)
-          properties[p.name.c_str()] = to_array(p.values.data(), {static_cast<py::ssize_t>(p.values.size())});
-        out["curvature"] = properties;
+        out["curvature"] = property_dict(r.mesh.vertex_properties);
         out["transition"] = to_array(r.transition.data(), {static_cast<py::ssize_t>(r.transition.size())});
         return out;
       },
@@ -269,6 +275,21 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       },
       py::arg("vertices"), py::arg("faces"), py::arg("graph") = nullptr,
       "What `vesselmesh check --json` reports for a surface (radius fidelity when a graph is given).");
+
+  m.def(
+      "curvature",
+      [](const Points& vertices, const Indices& faces) {
+        const TriMesh mesh = mesh_from_arrays(vertices, faces);
+        std::vector<VertexProperty> properties;
+        {
+          py::gil_scoped_release release;
+          properties = curvature_properties(estimate_curvature(mesh));
+        }
+        return property_dict(properties);
+      },
+      py::arg("vertices"), py::arg("faces"),
+      "Per-vertex curvature of a surface by 2-ring quadratic fitting: {name: (V,) float32} for k1, k2, mean,\n"
+      "gaussian and rms (1/length, convex positive for faces counter-clockwise from outside).");
 
   m.def(
       "surface_distance",

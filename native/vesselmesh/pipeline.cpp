@@ -50,11 +50,8 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
          static_cast<int64_t>(result.mesh.faces.size()));
   if (options.curvature) {
     start = Clock::now();
-    const VertexCurvature k = estimate_curvature(result.mesh);
-    const std::pair<const char*, const std::vector<double>*> measures[] = {
-        {"k1", &k.k1}, {"k2", &k.k2}, {"mean", &k.mean}, {"gaussian", &k.gaussian}, {"rms", &k.rms}};
-    for (const auto& [name, values] : measures)
-      result.mesh.vertex_properties.push_back({name, std::vector<float>(values->begin(), values->end())});
+    for (VertexProperty& p : curvature_properties(estimate_curvature(result.mesh)))
+      result.mesh.vertex_properties.push_back(std::move(p));
     record("curvature", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }

@@ -166,3 +166,15 @@ def test_threshold_zero_is_uniform(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     np.testing.assert_array_equal(vm.mesh(graph, levels=2, threshold=0.0)["faces"],
                                   vm.mesh(graph, levels=2, method="uniform")["faces"])
+
+
+def test_curvature_of_given_arrays_matches_the_mesh_run(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    surface = vm.mesh(graph, levels=2, curvature=True)
+    again = vm.curvature(surface["vertices"], surface["faces"])
+    assert sorted(again) == sorted(surface["curvature"])
+    for name, values in again.items():
+        assert values.dtype == np.float32
+        np.testing.assert_array_equal(values, surface["curvature"][name])
+    with pytest.raises(vm.InputError, match="face 0"):
+        vm.curvature(np.zeros((3, 3)), np.array([[0, 1, 5]]))

@@ -217,6 +217,16 @@ VertexCurvature estimate_curvature(const TriMesh& mesh) {
   return out;
 }
 
+std::vector<VertexProperty> curvature_properties(const VertexCurvature& curvature) {
+  const std::pair<const char*, const std::vector<double>*> measures[] = {
+      {"k1", &curvature.k1}, {"k2", &curvature.k2}, {"mean", &curvature.mean},
+      {"gaussian", &curvature.gaussian}, {"rms", &curvature.rms}};
+  std::vector<VertexProperty> properties;
+  for (const auto& [name, values] : measures)
+    properties.push_back({name, std::vector<float>(values->begin(), values->end())});
+  return properties;
+}
+
 std::vector<double> measure_values(const VertexCurvature& curvature, CurvatureMeasure measure) {
   const auto absolute = [](std::vector<double> values) {
     for (double& c : values) c = std::abs(c);

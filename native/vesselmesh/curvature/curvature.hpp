@@ -38,6 +38,10 @@ struct VertexCurvature {
 /// Throws std::invalid_argument for a face with a vertex index out of range.
 VertexCurvature estimate_curvature(const TriMesh& mesh);
 
+/// k1, k2, mean, gaussian and rms as float vertex properties of those names (what PLY files and the
+/// Python module carry).
+std::vector<VertexProperty> curvature_properties(const VertexCurvature& curvature);
+
 /// The per-vertex scalars the adaptive stage can threshold (design §6.6): signed Gaussian curvature is the
 /// paper's choice; with it, saddles (K < 0, as at a bifurcation crotch) rank lowest. The others rank a
 /// thin vessel above a thick one of the same shape, as curvature is 1/length; tube_departure,

@@ -1,0 +1,100 @@
+"""The "Vessel" tab of the 3D view's sidebar."""
+import json
+
+import bpy
+
+from .operators import centerline_of, draw_colors, draw_settings, live
+
+
+class VesselPanel:
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Vessel"
+
+    @staticmethod
+    def pair(context):
+        """(centerline, surface) of the active object; either may be None."""
+        centerline = live(centerline_of(context.active_object))
+        if centerline is None or centerline.type != "MESH":
+            return None, None
+        return centerline, live(centerline.vesselmesh.surface)
+
+
+class VIEW3D_PT_vesselmesh(VesselPanel, bpy.types.Panel):
+    bl_label = "Vessel Surface"
+
+    def draw(self, context):
+        layout = self.layout
+        centerline, surface = self.pair(context)
+        if centerline is None:
+            layout.label(text="Select a centerline (a mesh of edges) or a vessel surface")
+            layout.operator("import_scene.vesselmesh", icon="IMPORT")
+            return
+        layout.label(text=centerline.name, icon="OUTLINER_OB_MESH")
+        if centerline.vesselmesh.source:
+            layout.label(text=bpy.path.basename(centerline.vesselmesh.source), icon="FILE")
+        layout.use_property_split = True
+        draw_settings(layout, centerline.vesselmesh.settings)
+        layout.operator("vesselmesh.generate", text="Regenerate" if surface else "Generate", icon="FILE_REFRESH")
+
+
+class VIEW3D_PT_vesselmesh_colors(VesselPanel, bpy.types.Panel):
+    bl_label = "Curvature Colours"
+    bl_parent_id = "VIEW3D_PT_vesselmesh"
+
+    @classmethod
+    def poll(cls, context):
+        return cls.pair(context)[1] is not None
+
+    def draw(self, context):
+        layout = self.layout
+        centerline, surface = self.pair(context)
+        layout.use_property_split = True
+        draw_colors(layout, centerline.vesselmesh.settings)
+        state = surface.vesselmesh
+        if state.color_map:
+            layout.label(text=f"{state.color_low:.4g} to {state.color_high:.4g}")
+            layout.operator("vesselmesh.legend", icon="COLOR")
+        else:
+            layout.label(text="Regenerate with Curvature on to colour the surface")
+
+
+class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
+    bl_label = "Last Run"
+    bl_parent_id = "VIEW3D_PT_vesselmesh"
+
+    @classmethod
+    def poll(cls, context):
+        surface = cls.pair(context)[1]
+        return surface is not None and bool(surface.vesselmesh.stats)
+
+    def draw(self, context):
+        layout = self.layout
+        stats = json.loads(self.pair(context)[1].vesselmesh.stats)
+        col = layout.column(align=True)
+        col.label(text=f"{stats['triangles']:,} triangles, {stats['vertices']:,} vertices")
+        col.label(text=f"{stats['wall_seconds']:.2f} s in all, core {stats['seconds']:.2f} s")
+        for stage in stats["stages"]:
+            col.label(text=f"    {stage['stage']}: {stage['seconds']:.3f} s, {stage['faces']:,} faces")
+        check = stats.get("check")
+        col = layout.column(align=True)
+        if check:
+            error = check["fidelity"]["abs_relative_error"]
+            col.label(text=("Closed manifold" if check["closed_manifold"] else "Not a closed manifold")
+                      + f", genus {check['topology']['genus']}")
+            col.label(text=f"{check['intersections']['pairs']} crossing triangle pairs")
+            col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
+        layout.operator("vesselmesh.check", icon="CHECKMARK")
+
+
+classes = (VIEW3D_PT_vesselmesh, VIEW3D_PT_vesselmesh_colors, VIEW3D_PT_vesselmesh_stats)
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+
+
+def unregister():
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

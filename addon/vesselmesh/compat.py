@@ -1,0 +1,71 @@
+"""Everything that differs between the Blender versions the add-on supports (3.4 onwards), detected by
+feature rather than by version number. Only the 3.4 branches run on Debian 12's Blender; the others
+follow the API changes of 3.5 (positions), 3.6 (corner vertices, read-only loop_total), 4.1 (smooth
+shading) and 4.2 (the EEVEE engine's name)."""
+import bpy
+import numpy as np
+
+
+def set_positions(mesh, coords):
+    """Vertex positions from a flat float32 array (3 per vertex)."""
+    position = mesh.attributes.get("position")  # 3.5+: positions are a generic attribute
+    if position is not None:
+        position.data.foreach_set("vector", coords)
+    else:
+        mesh.vertices.foreach_set("co", coords)
+
+
+def positions(mesh):
+    """(V,3) float64 vertex positions."""
+    coords = np.empty(3 * len(mesh.vertices), dtype=np.float32)
+    position = mesh.attributes.get("position")
+    if position is not None:
+        position.data.foreach_get("vector", coords)
+    else:
+        mesh.vertices.foreach_get("co", coords)
+    return coords.reshape(-1, 3).astype(np.float64)
+
+
+def set_triangles(mesh, faces):
+    """Corners and faces of a mesh whose vertices, loops and polygons were just added: faces (F,3) int32."""
+    corner_vert = mesh.attributes.get(".corner_vert")  # 3.6+
+    if corner_vert is not None:
+        corner_vert.data.foreach_set("value", faces.ravel())
+    else:
+        mesh.loops.foreach_set("vertex_index", faces.ravel())
+    mesh.polygons.foreach_set("loop_start", np.arange(0, faces.size, 3, dtype=np.int32))
+    if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # derived from loop_start in 3.6+
+        mesh.polygons.foreach_set("loop_total", np.full(len(faces), 3, dtype=np.int32))
+
+
+def shade_smooth(mesh):
+    if hasattr(mesh, "shade_smooth"):  # 4.1+
+        mesh.shade_smooth()
+    else:
+        mesh.polygons.foreach_set("use_smooth", np.ones(len(mesh.polygons), dtype=bool))
+
+
+def show_color_attribute(mesh, name):
+    """Makes a colour attribute the one the viewport shows and renders use."""
+    attributes = mesh.color_attributes
+    attributes.active_color = attributes[name]
+    attributes.render_color_index = attributes.active_color_index
+
+
+def set_eevee(scene):
+    """Selects EEVEE, named BLENDER_EEVEE_NEXT in 4.2 to 4.5."""
+    for engine in ("BLENDER_EEVEE_NEXT", "BLENDER_EEVEE"):
+        try:
+            scene.render.engine = engine
+            return
+        except TypeError:
+            continue
+    raise RuntimeError("this Blender has no EEVEE engine")
+
+
+def node_material(name):
+    """A new material with a node tree (use_nodes is implied and deprecated from 5.0)."""
+    material = bpy.data.materials.new(name)
+    if not material.use_nodes:
+        material.use_nodes = True
+    return material

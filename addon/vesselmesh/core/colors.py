@@ -1,0 +1,55 @@
+"""Colour maps for per-vertex curvature, and the value ranges they span."""
+import numpy as np
+
+# Stops in sRGB, evenly spaced over [0, 1], linearly interpolated between.
+COLORMAPS = {
+    # matplotlib's viridis: perceptually uniform, for quantities that are never negative.
+    "viridis": ("440154", "472d7b", "3b528b", "2c728e", "21918c", "28ae80", "5ec962", "addc30", "fde725"),
+    # ColorBrewer's RdBu, reversed: blue below zero, white at zero, red above.
+    "rdbu": ("053061", "2166ac", "4393c3", "92c5de", "d1e5f0", "f7f7f7", "fddbc7", "f4a582", "d6604d", "b2182b",
+             "67001f"),
+}
+
+# Curvature measures that take both signs (saddles are negative); rms never does.
+SIGNED = frozenset({"k1", "k2", "mean", "gaussian"})
+
+
+def colormap_for(measure, choice="auto"):
+    """The map to use: a diverging one centred on zero for signed measures, viridis for the others."""
+    if choice != "auto":
+        return choice
+    return "rdbu" if measure in SIGNED else "viridis"
+
+
+def value_range(values, measure, percentile=2.0):
+    """(lo, hi) from the percentile-th to the (100 - percentile)-th percentile, so that a few extreme
+    vertices (cap rims, joint creases) do not wash the rest out. Signed measures get ±max(|lo|, |hi|),
+    which puts zero at the centre of a diverging map."""
+    lo, hi = (float(v) for v in np.percentile(values, [percentile, 100.0 - percentile]))
+    if measure in SIGNED:
+        hi = max(abs(lo), abs(hi))
+        lo = -hi
+    if hi <= lo:  # constant values: any range that contains them
+        lo, hi = lo - 0.5, hi + 0.5
+    return lo, hi
+
+
+def srgb_to_linear(c):
+    """sRGB components in [0, 1] to scene-linear, as Blender stores float colours."""
+    c = np.asarray(c, dtype=np.float64)
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def _stops(name):
+    return np.array([[int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4)] for h in COLORMAPS[name]])
+
+
+def map_colors(values, lo, hi, name):
+    """(V,4) float32 scene-linear RGBA of each value on map `name` over [lo, hi] (clamped at the ends)."""
+    stops = _stops(name)
+    t = np.clip((np.asarray(values, dtype=np.float64) - lo) / (hi - lo), 0.0, 1.0)
+    positions = np.linspace(0.0, 1.0, len(stops))
+    rgba = np.ones((len(t), 4), dtype=np.float32)
+    for channel in range(3):
+        rgba[:, channel] = srgb_to_linear(np.interp(t, positions, stops[:, channel]))
+    return rgba

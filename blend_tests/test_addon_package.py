@@ -1,0 +1,47 @@
+"""The add-on installs from build/vesselmesh.zip the way a user installs it, and carries what it needs."""
+import os
+import re
+import sys
+import tomllib
+import zipfile
+
+import addon_utils
+import bpy
+
+import vesselmesh_core as vm
+from conftest import BUILD, ROOT
+
+
+def test_addon_is_enabled_from_the_zip_with_its_own_native_module():
+    assert addon_utils.check("vesselmesh") == (True, True)
+    addons = bpy.utils.user_resource("SCRIPTS", path="addons")
+    assert os.path.commonpath([vm.__file__, addons]) == addons
+
+
+def test_zip_has_one_top_level_folder_with_bl_info_manifest_and_native_module():
+    with zipfile.ZipFile(BUILD / "vesselmesh.zip") as archive:
+        names = archive.namelist()
+        manifest = tomllib.loads(archive.read("vesselmesh/blender_manifest.toml").decode())
+    assert {name.split("/")[0] for name in names} == {"vesselmesh"}
+    assert "vesselmesh/__init__.py" in names
+    assert any(re.fullmatch(r"vesselmesh/_native/vesselmesh_core\..*\.so", name) for name in names)
+    assert manifest["id"] == "vesselmesh" and manifest["type"] == "add-on"
+
+
+def test_addon_and_manifest_carry_the_projects_version():
+    project = re.search(r"project\(VesselMesh VERSION ([0-9.]+)", (ROOT / "CMakeLists.txt").read_text()).group(1)
+    with zipfile.ZipFile(BUILD / "vesselmesh.zip") as archive:
+        manifest = tomllib.loads(archive.read("vesselmesh/blender_manifest.toml").decode())
+    assert manifest["version"] == project
+    assert ".".join(map(str, sys.modules["vesselmesh"].bl_info["version"])) == project
+
+
+def test_file_import_menu_offers_the_importer():
+    operators = sys.modules["vesselmesh"].blender.operators
+    assert operators.menu_import in bpy.types.TOPBAR_MT_file_import._dyn_ui_initialize()
+    assert bpy.ops.import_scene.vesselmesh.get_rna_type().name == "Import Vessel Centerline"
+
+
+def test_operators_that_change_the_scene_are_undoable():
+    for op in (bpy.ops.import_scene.vesselmesh, bpy.ops.vesselmesh.generate, bpy.ops.vesselmesh.legend):
+        assert "UNDO" in op.bl_options

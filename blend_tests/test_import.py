@@ -1,0 +1,63 @@
+"""File > Import: every format gives an editable centerline object and a closed, coloured surface."""
+import bpy
+import numpy as np
+import pytest
+
+import vesselmesh_core as vm
+from helpers import assert_closed_manifold, attribute, import_file, topology
+
+FILES = ["bifurcation.swc", "ring_with_tail.vtk", "y_vertices.csv", "two_lines.vtp"]
+
+
+@pytest.mark.parametrize("name", FILES)
+def test_each_format_imports_as_a_centerline_and_a_closed_surface(project_data, name):
+    centerline, surface = import_file(project_data / name)
+    data = vm.read(str(project_data / name))
+    assert len(centerline.data.vertices) == len(data["points"])
+    assert len(centerline.data.edges) == len(data["edges"])
+    assert len(centerline.data.polygons) == 0
+    radius = centerline.data.attributes["radius"]
+    assert radius.data_type == "FLOAT"
+    assert radius.domain == ("POINT" if data["radius"] is not None else "EDGE")
+    assert_closed_manifold(surface)
+    assert centerline.vesselmesh.surface == surface and surface.vesselmesh.centerline == centerline
+    assert centerline.vesselmesh.source == str(project_data / name)
+    assert bpy.context.active_object == surface
+
+
+def test_surface_has_the_curvature_attributes_and_an_active_colour_attribute(project_data):
+    _, surface = import_file(project_data / "bifurcation.swc")
+    mesh = surface.data
+    for name in ("k1", "k2", "mean", "gaussian", "rms"):
+        attr = mesh.attributes[name]
+        assert (attr.data_type, attr.domain) == ("FLOAT", "POINT")
+        assert np.all(np.isfinite(attribute(surface, name)))
+    color = mesh.color_attributes["curvature_color"]
+    assert (color.data_type, color.domain) == ("FLOAT_COLOR", "POINT")
+    assert mesh.color_attributes.active_color.name == "curvature_color"
+    assert mesh.color_attributes.render_color_index == mesh.color_attributes.active_color_index
+    assert mesh.materials[0].name == "VesselMesh curvature"
+
+
+def test_import_options_are_stored_on_the_centerline_and_used(project_data):
+    _, coarse = import_file(project_data / "bifurcation.swc", levels=0, caps="open", curvature=False)
+    centerline, fine = import_file(project_data / "bifurcation.swc", levels=2, method="uniform", caps="open")
+    settings = centerline.vesselmesh.settings
+    assert (settings.levels, settings.method, settings.caps) == (2, "uniform", "open")
+    assert len(fine.data.polygons) == 16 * len(coarse.data.polygons)  # uniform Loop: 4 triangles per triangle
+    assert topology(fine)["boundary_edges"] > 0  # open ends
+    assert "mean" not in coarse.data.attributes and "curvature_color" not in coarse.data.color_attributes
+
+
+def test_scale_multiplies_coordinates_and_radii(project_data):
+    centerline, surface = import_file(project_data / "bifurcation.swc")
+    small_centerline, small_surface = import_file(project_data / "bifurcation.swc", scale=0.001)
+    assert np.allclose(_points(small_centerline), 0.001 * _points(centerline), rtol=1e-6)
+    assert np.allclose(attribute(small_centerline, "radius"), 0.001 * attribute(centerline, "radius"), rtol=1e-6)
+    assert np.allclose(small_surface.dimensions, 0.001 * surface.dimensions, rtol=1e-3)
+
+
+def _points(obj):
+    points = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    obj.data.vertices.foreach_get("co", points)
+    return points.reshape(-1, 3)
