@@ -14,6 +14,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/mesh_files.hpp"
+#include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
 #include "vesselmesh/synth/synth.hpp"
@@ -97,8 +98,7 @@ int main(int argc, char** argv) {
   SubdivisionOptions& subdivision = mesh_options.subdivision;
   mesh->add_option("--levels", subdivision.levels, "Loop subdivision levels")->check(CLI::Range(0, 4));
   mesh->add_option("--method", subdivision.method, "which triangles each level splits")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Refinement>{
-          {"curvature", Refinement::curvature}, {"uniform", Refinement::uniform}, {"dihedral", Refinement::dihedral}}));
+      ->transform(CLI::CheckedTransformer(refinement_names()));
   mesh->add_option("--uniform-levels", subdivision.uniform_levels,
                    "the first levels split every triangle (adaptive methods)")
       ->check(CLI::NonNegativeNumber);
@@ -106,22 +106,18 @@ int main(int argc, char** argv) {
                    "curvature method: split triangles with a vertex at or above this equalised curvature")
       ->check(CLI::Range(0.0, 1.0));
   mesh->add_option("--measure", subdivision.measure, "curvature method: the measure to equalise and threshold")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, CurvatureMeasure>{
-          {"gaussian", CurvatureMeasure::gaussian}, {"abs-gaussian", CurvatureMeasure::abs_gaussian},
-          {"mean", CurvatureMeasure::mean}, {"abs-mean", CurvatureMeasure::abs_mean}, {"tube-departure", CurvatureMeasure::tube_departure}, {"rms", CurvatureMeasure::rms}}));
+      ->transform(CLI::CheckedTransformer(measure_names()));
   mesh->add_option("--angle", subdivision.angle_degrees,
                    "dihedral method: split triangles with an interior dihedral angle below this, in degrees")
       ->check(CLI::Range(0.0, 180.0));
   mesh->add_option("--sampling", mesh_options.sampling.method, "cross-section sampling")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Sampling>{{"bidirectional", Sampling::bidirectional},
-                                          {"unidirectional", Sampling::unidirectional}}));
+      ->transform(CLI::CheckedTransformer(sampling_names()));
   mesh->add_option("--alpha", mesh_options.sampling.alpha, "spacing scale (1: about one diameter)")
       ->check(CLI::PositiveNumber);
   mesh->add_option("--beta", mesh_options.sampling.beta, "curvature weight, in median radii")
       ->check(CLI::NonNegativeNumber);
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Caps>{{"flat", Caps::flat}, {"open", Caps::open}}));
+      ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");
   mesh->add_flag("--curvature", mesh_options.curvature,
                  "estimate per-vertex curvature (2-ring fit); PLY gets k1, k2, mean, gaussian, rms");

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -13,6 +14,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
 #include "vesselmesh/synth/synth.hpp"
@@ -61,25 +63,12 @@ py::dict property_dict(const std::vector<VertexProperty>& properties) {
   return out;
 }
 
-py::dict distribution_dict(const Distribution& d) {
-  py::dict out;
-  out["min"] = d.min;
-  out["median"] = d.median;
-  out["p95"] = d.p95;
-  out["max"] = d.max;
-  out["mean"] = d.mean;
-  out["count"] = d.count;
-  return out;
-}
-
 /// The enum value a name stands for; ValueError listing the names otherwise.
 template <typename E>
-E choice(const char* what, const std::string& name, std::initializer_list<std::pair<const char*, E>> names) {
+E choice(const char* what, const std::string& name, const std::map<std::string, E>& names) {
+  if (const auto it = names.find(name); it != names.end()) return it->second;
   std::string known;
-  for (const auto& [n, value] : names) {
-    if (name == n) return value;
-    known += std::string(known.empty() ? "" : ", ") + "'" + n + "'";
-  }
+  for (const auto& [n, value] : names) known += (known.empty() ? "'" : ", '") + n + "'";
   throw py::value_error(std::string(what) + " must be one of " + known + ", got '" + name + "'");
 }
 
@@ -217,26 +206,16 @@ PYBIND11_MODULE(vesselmesh_core, m) {
          const std::string& measure, double angle) {
         MeshOptions o;
         o.subdivision.levels = levels;
-        o.subdivision.method = choice<Refinement>("method", method,
-                                                  {{"curvature", Refinement::curvature},
-                                                   {"uniform", Refinement::uniform},
-                                                   {"dihedral", Refinement::dihedral}});
+        o.subdivision.method = choice("method", method, refinement_names());
         o.subdivision.uniform_levels = uniform_levels;
         o.subdivision.threshold = threshold;
-        o.subdivision.measure = choice<CurvatureMeasure>("measure", measure,
-                                                         {{"rms", CurvatureMeasure::rms},
-                                                          {"gaussian", CurvatureMeasure::gaussian},
-                                                          {"abs-gaussian", CurvatureMeasure::abs_gaussian},
-                                                          {"mean", CurvatureMeasure::mean},
-                                                          {"abs-mean", CurvatureMeasure::abs_mean}, {"tube-departure", CurvatureMeasure::tube_departure}});
+        o.subdivision.measure = choice("measure", measure, measure_names());
         o.subdivision.angle_degrees = angle;
         o.curvature = curvature;
-        o.sampling.method = choice<Sampling>("sampling", sampling,
-                                             {{"bidirectional", Sampling::bidirectional},
-                                              {"unidirectional", Sampling::unidirectional}});
+        o.sampling.method = choice("sampling", sampling, sampling_names());
         o.sampling.alpha = alpha;
         o.sampling.beta = beta;
-        o.caps = choice<Caps>("caps", caps, {{"flat", Caps::flat}, {"open", Caps::open}});
+        o.caps = choice("caps", caps, caps_names());
         MeshResult r;
         {
           py::gil_scoped_release release;
@@ -301,10 +280,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
           py::gil_scoped_release release;
           report = surface_distance(from, to, graph);
         }
-        py::dict out;
-        out["vertices"] = distribution_dict(report.vertices);
-        out["centroids"] = distribution_dict(report.centroids);
-        return out;
+        return json_to_python(report_json(report, -1));
       },
       py::arg("vertices"), py::arg("faces"), py::arg("to_vertices"), py::arg("to_faces"), py::arg("graph"),
       "Distance from a surface (sampled at its vertices and face centroids) to another, relative to the local\n"

@@ -26,7 +26,7 @@ namespace {
 /// The triangulated base mesh the pipeline subdivides.
 TriMesh base_mesh(const CenterlineData& centerline) {
   TileOptions options;
-  options.radius_scale = 1 / 0.657;
+  options.radius_scale = subdivision_radius_scale();
   return triangulate(tile_base_mesh(build_graph(centerline), options));
 }
 

@@ -496,6 +496,13 @@ SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, c
   return r;
 }
 
+std::string report_json(const SurfaceDistanceReport& report, int indent) {
+  nlohmann::ordered_json j;
+  j["vertices"] = distribution_json(report.vertices);
+  j["centroids"] = distribution_json(report.centroids);
+  return j.dump(indent);
+}
+
 CheckReport check_mesh(const TriMesh& mesh, const CenterlineGraph* centerline) {
   CheckReport report;
   report.topology = check_topology(mesh);

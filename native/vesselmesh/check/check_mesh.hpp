@@ -97,6 +97,8 @@ struct SurfaceDistanceReport {
   Distribution vertices, centroids;
 };
 SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, const CenterlineGraph& centerline);
+/// {"vertices": {...}, "centroids": {...}}, each distribution as in report_json.
+std::string report_json(const SurfaceDistanceReport& report, int indent = 2);
 
 CheckReport check_mesh(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr);
 /// The report as JSON text (what `vesselmesh check --json` prints).
