@@ -31,6 +31,8 @@ def assert_closed_manifold(obj):
     t = topology(obj)
     assert t["boundary_edges"] == 0 and t["non_manifold_edges"] == 0, t
     assert len(obj.data.polygons) > 0
+    assert len(obj.data.edges) == t["edges"]  # Blender's edges are the surface's, each once
+    assert not obj.data.validate(verbose=True)  # edges, corners and faces agree (validate fixes and says so)
 
 
 def attribute(obj, name):

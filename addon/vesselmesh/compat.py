@@ -26,16 +26,28 @@ def positions(mesh):
     return coords.reshape(-1, 3).astype(np.float64)
 
 
-def set_triangles(mesh, faces):
-    """Corners and faces of a mesh whose vertices, loops and polygons were just added: faces (F,3) int32."""
-    corner_vert = mesh.attributes.get(".corner_vert")  # 3.6+
+def set_indices(collection, item_type, name, values):
+    """collection.foreach_set(name, values) for an int property of item_type (int32 values). Blender copies
+    the array in one go only when its type is the property's own: uint32 where the property is unsigned
+    (3.4's mesh elements), else it converts item by item, twenty times slower."""
+    unsigned = item_type.bl_rna.properties[name].subtype == "UNSIGNED"
+    collection.foreach_set(name, values.ravel().view(np.uint32) if unsigned else values.ravel())
+
+
+def set_triangles(mesh, faces, edges, corner_edges):
+    """Edges, corners and faces of a mesh whose vertices, edges, loops and polygons were just added: faces
+    (F,3), edges (E,2) and corner_edges (F,3) (the edge from each corner to the next), all int32."""
+    set_indices(mesh.edges, bpy.types.MeshEdge, "vertices", edges)
+    corner_vert, corner_edge = mesh.attributes.get(".corner_vert"), mesh.attributes.get(".corner_edge")  # 3.6+
     if corner_vert is not None:
         corner_vert.data.foreach_set("value", faces.ravel())
+        corner_edge.data.foreach_set("value", corner_edges.ravel())
     else:
-        mesh.loops.foreach_set("vertex_index", faces.ravel())
-    mesh.polygons.foreach_set("loop_start", np.arange(0, faces.size, 3, dtype=np.int32))
+        set_indices(mesh.loops, bpy.types.MeshLoop, "vertex_index", faces)
+        set_indices(mesh.loops, bpy.types.MeshLoop, "edge_index", corner_edges)
+    set_indices(mesh.polygons, bpy.types.MeshPolygon, "loop_start", np.arange(0, faces.size, 3, dtype=np.int32))
     if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # derived from loop_start in 3.6+
-        mesh.polygons.foreach_set("loop_total", np.full(len(faces), 3, dtype=np.int32))
+        set_indices(mesh.polygons, bpy.types.MeshPolygon, "loop_total", np.full(len(faces), 3, dtype=np.int32))
 
 
 def shade_smooth(mesh):

@@ -14,6 +14,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/mesh/mesh_edges.hpp"
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
@@ -269,6 +270,24 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("vertices"), py::arg("faces"),
       "Per-vertex curvature of a surface by 2-ring quadratic fitting: {name: (V,) float32} for k1, k2, mean,\n"
       "gaussian and rms (1/length, convex positive for faces counter-clockwise from outside).");
+
+  m.def(
+      "edges",
+      [](const py::array_t<int32_t, py::array::c_style | py::array::forcecast>& faces, int32_t vertex_count) {
+        if (faces.ndim() != 2 || faces.shape(1) != 3) throw InputError("arrays", "", "faces must have shape (F, 3)");
+        std::vector<Tri> f(faces.shape(0));
+        if (!f.empty()) std::memcpy(f.data(), faces.data(), sizeof(Tri) * f.size());
+        MeshEdges e;
+        {
+          py::gil_scoped_release release;
+          e = mesh_edges(f, vertex_count);
+        }
+        return py::make_tuple(edges_array(e.edges), to_array(e.corner_edges.empty() ? nullptr : e.corner_edges.front().data(),
+                                                             {static_cast<py::ssize_t>(e.corner_edges.size()), 3}));
+      },
+      py::arg("faces"), py::arg("vertex_count"),
+      "The edges of a triangle mesh: (edges (E,2) int32, lower vertex first, sorted; corner_edges (F,3) int32,\n"
+      "the edge from each face's corner k to corner k+1), as Blender stores a mesh's edges and loops.");
 
   m.def(
       "surface_distance",

@@ -1,4 +1,5 @@
 """The only place that reads and writes Blender mesh data (foreach_get/foreach_set on numpy arrays)."""
+import bpy
 import numpy as np
 
 from .. import compat
@@ -6,17 +7,20 @@ from .. import compat
 COLOR_ATTRIBUTE = "curvature_color"
 
 
-def write_surface(mesh, vertices, faces):
+def write_surface(mesh, vertices, faces, edges, corner_edges):
     """Replaces the geometry of mesh (keeping its name, materials and users) by a smooth-shaded triangle
-    surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous."""
+    surface: vertices (V,3) float32, faces (F,3) int32 and their edges as vesselmesh_core.edges gives them
+    (edges (E,2), corner_edges (F,3) int32), all C-contiguous. Handing Blender the edges spares it
+    hashing them (calc_edges), the largest part of building a big mesh."""
     mesh.clear_geometry()
     mesh.vertices.add(len(vertices))
+    mesh.edges.add(len(edges))
     mesh.loops.add(faces.size)
     mesh.polygons.add(len(faces))
     compat.set_positions(mesh, vertices.ravel())
-    compat.set_triangles(mesh, faces)
+    compat.set_triangles(mesh, faces, edges, corner_edges)
     compat.shade_smooth(mesh)
-    mesh.update(calc_edges=True)
+    mesh.update()
 
 
 def write_centerline(mesh, points, edges, radius=None, edge_radius=None):
@@ -25,7 +29,7 @@ def write_centerline(mesh, points, edges, radius=None, edge_radius=None):
     mesh.vertices.add(len(points))
     compat.set_positions(mesh, np.ascontiguousarray(points, dtype=np.float32).ravel())
     mesh.edges.add(len(edges))
-    mesh.edges.foreach_set("vertices", np.ascontiguousarray(edges, dtype=np.int32).ravel())
+    compat.set_indices(mesh.edges, bpy.types.MeshEdge, "vertices", np.ascontiguousarray(edges, dtype=np.int32))
     mesh.update()
     if radius is not None:
         set_float_attribute(mesh, "radius", radius, "POINT")

@@ -66,8 +66,7 @@ class MeshJobRunner:
 
 def build_surface(job, surface, started):
     """Writes the job's surface and curvature into the surface object's mesh, and its figures."""
-    vertices, faces = job.surface()
-    mesh_data.write_surface(surface.data, vertices, faces)
+    mesh_data.write_surface(surface.data, *job.surface())
     for name, values in job.curvature().items():  # waits for the curvature run, which ran meanwhile
         mesh_data.set_float_attribute(surface.data, name, values)
     stats = job.stats()

@@ -44,17 +44,23 @@ def centerline_graph(points, edges, radius=None, edge_radius=None, default_radiu
 
 
 class MeshJob:
-    """One meshing of a graph by the core, in a worker thread (the core releases the GIL while it works).
+    """One meshing of a graph by the core, in worker threads (the core releases the GIL while it works).
 
-    With curvature the same worker then estimates the surface's curvature, while Blender builds the mesh
-    from the surface: the curvature time hides behind Blender's.
+    Once the surface exists, one worker lists its edges for Blender while the other, with curvature,
+    estimates the surface's curvature; the curvature time hides behind the edges and Blender's mesh
+    building.
     """
 
     def __init__(self, graph, options, curvature):
-        pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="vesselmesh")
+        pool = ThreadPoolExecutor(max_workers=2, thread_name_prefix="vesselmesh")
         self._surface = pool.submit(core().mesh, graph, **options)
+        self._edges = pool.submit(self._list_edges)
         self._curvature = pool.submit(self._estimate_curvature) if curvature else None
         pool.shutdown(wait=False)
+
+    def _list_edges(self):
+        result = self._surface.result()
+        return core().edges(result["faces"], len(result["vertices"]))
 
     def _estimate_curvature(self):
         result = self._surface.result()
@@ -63,7 +69,7 @@ class MeshJob:
         return values, time.perf_counter() - start
 
     def _futures(self):
-        return [f for f in (self._surface, self._curvature) if f is not None]
+        return [f for f in (self._surface, self._edges, self._curvature) if f is not None]
 
     def done(self):
         return all(f.done() for f in self._futures())
@@ -77,11 +83,12 @@ class MeshJob:
             f.cancel()
 
     def surface(self):
-        """Waits for the surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous (ready for
-        Blender's foreach_set). Raises what the core raised."""
+        """Waits for the surface: vertices (V,3) float32, faces (F,3) int32, edges (E,2) int32 and
+        corner_edges (F,3) int32 (see vesselmesh_core.edges), C-contiguous (ready for Blender's foreach_set).
+        Raises what the core raised."""
         result = self._surface.result()
         return (np.ascontiguousarray(result["vertices"], dtype=np.float32),
-                np.ascontiguousarray(result["faces"], dtype=np.int32))
+                np.ascontiguousarray(result["faces"], dtype=np.int32), *self._edges.result())
 
     def curvature(self):
         """Waits for the curvature: {name: (V,) float32} for k1, k2, mean, gaussian and rms, or {} without

@@ -178,3 +178,17 @@ def test_curvature_of_given_arrays_matches_the_mesh_run(project_data):
         np.testing.assert_array_equal(values, surface["curvature"][name])
     with pytest.raises(vm.InputError, match="face 0"):
         vm.curvature(np.zeros((3, 3)), np.array([[0, 1, 5]]))
+
+
+def test_edges_join_each_corner_to_the_next_and_count_as_a_closed_surface_needs(project_data):
+    surface = vm.mesh(vm.Graph.read(str(project_data / "bifurcation.swc")), levels=1)
+    faces = surface["faces"]
+    edges, corner_edges = vm.edges(faces, len(surface["vertices"]))
+    assert edges.dtype == corner_edges.dtype == np.int32
+    assert corner_edges.shape == faces.shape
+    assert 2 * len(edges) == faces.size  # closed: every edge has two faces
+    following = np.roll(faces, -1, axis=1)
+    np.testing.assert_array_equal(edges[corner_edges], np.stack([np.minimum(faces, following),
+                                                                 np.maximum(faces, following)], axis=-1))
+    with pytest.raises(ValueError, match="face 0"):
+        vm.edges(np.array([[0, 1, 5]], dtype=np.int32), 3)
