@@ -26,6 +26,7 @@ def test_zip_has_one_top_level_folder_with_bl_info_manifest_and_native_module():
     assert "vesselmesh/__init__.py" in names
     assert any(re.fullmatch(r"vesselmesh/_native/vesselmesh_core\..*\.so", name) for name in names)
     assert manifest["id"] == "vesselmesh" and manifest["type"] == "add-on"
+    assert manifest["license"] == ["SPDX:GPL-3.0-or-later"] and "vesselmesh/LICENSE" in names
 
 
 def test_addon_and_manifest_carry_the_projects_version():
