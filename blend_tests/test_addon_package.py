@@ -1,6 +1,7 @@
 """The add-on installs from build/vesselmesh.zip the way a user installs it, and carries what it needs."""
 import os
 import re
+import subprocess
 import sys
 import tomllib
 import zipfile
@@ -27,6 +28,12 @@ def test_zip_has_one_top_level_folder_with_bl_info_manifest_and_native_module():
     assert any(re.fullmatch(r"vesselmesh/_native/vesselmesh_core\..*\.so", name) for name in names)
     assert manifest["id"] == "vesselmesh" and manifest["type"] == "add-on"
     assert manifest["license"] == ["SPDX:GPL-3.0-or-later"] and "vesselmesh/LICENSE" in names
+
+
+def test_native_module_needs_only_libraries_every_linux_has():
+    needed = re.findall(r"^\s*(\S+) =>", subprocess.run(["ldd", vm.__file__], capture_output=True, text=True,
+                                                               check=True).stdout, re.MULTILINE)
+    assert needed and set(needed) <= {"libz.so.1", "libstdc++.so.6", "libm.so.6", "libgcc_s.so.1", "libc.so.6"}, needed
 
 
 def test_addon_and_manifest_carry_the_projects_version():
