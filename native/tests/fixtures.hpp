@@ -116,6 +116,17 @@ inline CenterlineData bend(double bend_radii, double scale) {
   run(d, prev, d.points[prev] + Vec3(10 * scale, 0, 0), 5, 1 * scale);
   return d;
 }
+/// A coarse zigzag like a sparse tracing: 12 edges of `spacing` radii, each turning by `turn` degrees
+/// one way then the other, radius 1.
+inline CenterlineData zigzag(double turn, double spacing, double scale) {
+  CenterlineData d = start(Vec3::Zero(), scale);
+  int32_t prev = 0;
+  for (int i = 0; i < 12; ++i) {
+    const double heading = (i % 2 == 0 ? 0.5 : -0.5) * turn * M_PI / 180;
+    prev = run(d, prev, d.points[prev] + spacing * scale * Vec3(std::sin(heading), 0, std::cos(heading)), 1, scale);
+  }
+  return d;
+}
 /// A straight tube of radius r and length `length` radii with points every 0.5 radius.
 inline CenterlineData straight(double length_radii, double scale) {
   CenterlineData d = start(Vec3::Zero(), scale);

@@ -83,6 +83,27 @@ TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   }
 }
 
+TEST(Pipeline, BentTubeKeepsItsRadiusRoundTheBend) {
+  // Loop's limit cuts a bend like a B-spline its control polygon, and the sections, which follow the
+  // smoothed tangent, lean against a coarse polyline: both are compensated (tile/base_mesh.cpp).
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::bend(2.0, scale));
+    const FidelityReport f = radius_fidelity(mesh_at(g, 2).mesh, g);
+    EXPECT_LT(f.abs_relative_error.median, 0.02) << "scale " << scale;
+    EXPECT_LT(f.abs_relative_error.p95, 0.03) << "scale " << scale;  // 0.046 without the compensation
+  }
+}
+
+TEST(Pipeline, CoarseZigzagKeepsItsRadius) {
+  // Points four radii apart turning 30° at each, as in sparse tracings.
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::zigzag(30, 4, scale));
+    const FidelityReport f = radius_fidelity(mesh_at(g, 2).mesh, g);
+    EXPECT_LT(f.abs_relative_error.median, 0.025) << "scale " << scale;  // 0.039 without the compensation
+    EXPECT_LT(f.abs_relative_error.p95, 0.08) << "scale " << scale;     // 0.156 without
+  }
+}
+
 TEST(Pipeline, SeveralComponentsGiveOneSurfaceEach) {
   CenterlineData d = fixtures::bifurcation(1.0);
   const CenterlineData other = fixtures::loop(1.0);

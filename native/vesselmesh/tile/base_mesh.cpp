@@ -45,6 +45,53 @@ struct Patch {
   std::vector<int32_t> ends;    ///< indices into Tiler::ends_
 };
 
+/// The largest distance of a section's corners from its centre: radius_scale × r, pushed out by the
+/// lean against `axis` (see Tiler::add_section).
+double corner_reach(const Section& s, const Vec3& axis, double radius_scale) {
+  return radius_scale * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
+}
+
+/// Whether section a's corners, within `reach` of its centre, stay on a's side of section b's plane
+/// (b after a along the tube when `b_after`).
+bool clear_of(const Section& a, double reach, const Section& b, bool b_after) {
+  const double side = (b_after ? -1.0 : 1.0) * b.normal.dot(a.center - b.center);
+  return side > reach * a.normal.cross(b.normal).norm();
+}
+
+/// Moves the inner sections' centres so that the Loop limit surface passes through where they were.
+/// Along a tube whose sections each join their neighbours by two edges per corner, the limit of a
+/// section's corners moves with 2/3 of its own centre and 1/6 of each neighbour's: a bent centerline
+/// would be cut short by about a sixth of the turn, like a cubic B-spline's control polygon. Solving
+/// (c[i−1] + 4c[i] + c[i+1])/6 = p[i] (Jacobi sweeps, which halve the error each time) undoes that;
+/// end sections (joint squares, caps) stay put, and a ring wraps round. On a jagged centerline the
+/// solution swings from side to side: no centre moves by more than a fifth of its radius, and one
+/// whose move would fold the tube (its square crossing a neighbour's plane) stays where it was.
+void place_for_limit(std::vector<Section>& sections, const std::vector<Vec3>& axis, bool ring, double radius_scale) {
+  const std::size_t n = ring ? sections.size() - 1 : sections.size();
+  if (n < 3) return;
+  std::vector<Vec3> target(n), c(n), next(n);
+  for (std::size_t i = 0; i < n; ++i) target[i] = c[i] = sections[i].center;
+  const std::size_t first = ring ? 0 : 1, last = ring ? n : n - 1;
+  for (int sweep = 0; sweep < 40; ++sweep) {
+    next = c;
+    for (std::size_t i = first; i < last; ++i)
+      next[i] = 1.5 * target[i] - 0.25 * (c[(i + n - 1) % n] + c[(i + 1) % n]);
+    std::swap(c, next);
+  }
+  for (std::size_t i = first; i < last; ++i) {
+    const Vec3 move = c[i] - target[i];
+    const double most = 0.2 * sections[i].radius;
+    sections[i].center = target[i] + (move.norm() > most ? most / move.norm() : 1.0) * move;
+  }
+  for (std::size_t i = first; i < last; ++i) {
+    Section& s = sections[i];
+    const Section &before = sections[(i + n - 1) % n], &after = sections[(i + 1) % n];
+    const double reach = corner_reach(s, axis[i], radius_scale);
+    if (!clear_of(s, reach, before, false) || !clear_of(s, reach, after, true)) s.center = target[i];
+  }
+  if (ring) sections.back().center = sections.front().center;
+}
+
 class Tiler {
  public:
   Tiler(const CenterlineGraph& g, const TileOptions& o) : g_(g), opt_(o), joints_(g.points.size()) {
@@ -267,16 +314,24 @@ class Tiler {
     }
   }
 
-  int32_t add_section(const Section& s) {
+  /// Adds the section's four corners. Its plane follows the smoothed tangent, which leans against
+  /// `axis`, the direction the tube really runs (the polyline's) on a coarse or jagged centerline: each
+  /// corner is pushed out to the radius from the axis line rather than from the centre, or the tube
+  /// would be too thin by the cosine of the lean (capped at twice the radius, a 60° lean).
+  int32_t add_section(const Section& s, const Vec3& axis) {
     const int32_t first = static_cast<int32_t>(mesh_.vertices.size());
     for (int k = 0; k < 4; ++k) {
-      mesh_.vertices.push_back(s.corner(k, scale()));
+      const Vec3 offset = s.corner(k, scale()) - s.center;
+      const double along = offset.normalized().dot(axis);
+      mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
       mesh_.axis.push_back(s.center);
       mesh_.axis_radius.push_back(s.radius);
     }
     ++mesh_.sections;
     return first;
   }
+
+  int32_t add_section(const Section& s) { return add_section(s, s.normal); }
 
   /// The patch's vertex ids for the square of end `e`, corners counter-clockwise about its normal.
   /// A shared square's corners are made once; seen from the branch's end they run the other way.
@@ -382,9 +437,14 @@ class Tiler {
       sections[i].radius = c.radius_at(arcs[i]);
     }
     if (ring) sections.back().center = sections.front().center;
+    // Where the tube really runs at each section: along the polyline through the centres.
+    std::vector<Vec3> axis(m + 1);
+    for (std::size_t i = 0; i <= m; ++i)
+      axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
     for (std::size_t i = 0; i <= m; ++i) sections[i].normal = c.tangent(arcs[i]);
     if (head) sections.front().normal = head->square.normal;
     if (tail) sections.back().normal = -tail->square.normal;
+    place_for_limit(sections, axis, ring, scale());
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
@@ -401,7 +461,7 @@ class Tiler {
         // The tail square runs counter-clockwise about its outward normal, against the travel.
         for (int j = 0; j < 4; ++j) ids[i][j] = tail->first_vertex + ((k - j) % 4 + 4) % 4;
       } else {
-        const int32_t first = add_section(sections[i]);
+        const int32_t first = add_section(sections[i], axis[i]);
         for (int j = 0; j < 4; ++j) ids[i][j] = first + j;
       }
     }
