@@ -32,15 +32,6 @@ def empty_scene():
 
 
 @pytest.fixture
-def project_data():
-    """The project's own small inputs."""
-    return ROOT / "native" / "tests" / "data"
-
-
-@pytest.fixture
-def shared_data():
-    """../shared/data, or skip: the shared data sets are not part of the project."""
-    path = ROOT.parent / "shared" / "data"
-    if not path.is_dir():
-        pytest.skip("../shared/data is absent (shared data sets are not part of the project)")
-    return path
+def addon_zip():
+    """The zip the add-on was installed from."""
+    return BUILD / "vesselmesh.zip"

@@ -10,7 +10,6 @@ import addon_utils
 import bpy
 
 import vesselmesh_core as vm
-from conftest import BUILD, ROOT
 
 
 def test_addon_is_enabled_from_the_zip_with_its_own_native_module():
@@ -19,8 +18,8 @@ def test_addon_is_enabled_from_the_zip_with_its_own_native_module():
     assert os.path.commonpath([vm.__file__, addons]) == addons
 
 
-def test_zip_has_one_top_level_folder_with_bl_info_manifest_and_native_module():
-    with zipfile.ZipFile(BUILD / "vesselmesh.zip") as archive:
+def test_zip_has_one_top_level_folder_with_bl_info_manifest_and_native_module(addon_zip):
+    with zipfile.ZipFile(addon_zip) as archive:
         names = archive.namelist()
         manifest = tomllib.loads(archive.read("vesselmesh/blender_manifest.toml").decode())
     assert {name.split("/")[0] for name in names} == {"vesselmesh"}
@@ -36,9 +35,9 @@ def test_native_module_needs_only_libraries_every_linux_has():
     assert needed and set(needed) <= {"libz.so.1", "libstdc++.so.6", "libm.so.6", "libgcc_s.so.1", "libc.so.6"}, needed
 
 
-def test_addon_and_manifest_carry_the_projects_version():
-    project = re.search(r"project\(VesselMesh VERSION ([0-9.]+)", (ROOT / "CMakeLists.txt").read_text()).group(1)
-    with zipfile.ZipFile(BUILD / "vesselmesh.zip") as archive:
+def test_addon_and_manifest_carry_the_projects_version(project_root, addon_zip):
+    project = re.search(r"project\(VesselMesh VERSION ([0-9.]+)", (project_root / "CMakeLists.txt").read_text()).group(1)
+    with zipfile.ZipFile(addon_zip) as archive:
         manifest = tomllib.loads(archive.read("vesselmesh/blender_manifest.toml").decode())
     assert manifest["version"] == project
     assert ".".join(map(str, sys.modules["vesselmesh"].bl_info["version"])) == project

@@ -68,12 +68,11 @@ run_tests() {
     || failed+=("sanitizer tests")
 
   echo "== Python module tests (/usr/bin/python3)"
-  VESSELMESH_PYTHON_PATH="$build/python" /usr/bin/python3 -m pytest -q -p no:cacheprovider \
-    native/python/tests || failed+=("Python tests")
+  VESSELMESH_PYTHON_PATH="$build/python" /usr/bin/python3 -m pytest -q native/python/tests || failed+=("Python tests")
 
   echo "== Blender tests (blender -b)"
   VESSELMESH_PYTHON_PATH="$build/python" blender -b --factory-startup --python-exit-code 1 \
-    --python blend_tests/run.py -- -q -p no:cacheprovider blend_tests || failed+=("Blender tests")
+    --python blend_tests/run.py -- -q blend_tests || failed+=("Blender tests")
 
   if [ ${#failed[@]} -gt 0 ]; then
     echo "FAILED: ${failed[*]}"
