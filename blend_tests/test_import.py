@@ -1,10 +1,12 @@
 """File > Import: every format gives an editable centerline object and a closed, coloured surface."""
+import sys
+
 import bpy
 import numpy as np
 import pytest
 
 import vesselmesh_core as vm
-from helpers import assert_closed_manifold, attribute, import_file, topology
+from helpers import arrays, assert_closed_manifold, attribute, import_file, topology
 
 FILES = ["bifurcation.swc", "ring_with_tail.vtk", "y_vertices.csv", "two_lines.vtp"]
 
@@ -61,3 +63,13 @@ def _points(obj):
     points = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
     obj.data.vertices.foreach_get("co", points)
     return points.reshape(-1, 3)
+
+
+def test_default_settings_are_the_cores_defaults(project_data):
+    """The import operator with its defaults builds what vesselmesh_core.mesh builds with its own."""
+    meshing = sys.modules["vesselmesh"].core.meshing
+    _, surface = import_file(project_data / "bifurcation.swc")
+    expected = vm.mesh(meshing.centerline_graph(**meshing.read_centerline(project_data / "bifurcation.swc")))
+    vertices, faces = arrays(surface)
+    np.testing.assert_array_equal(faces, expected["faces"])
+    np.testing.assert_allclose(vertices, expected["vertices"], rtol=0, atol=1e-6)

@@ -27,12 +27,15 @@ class MeshSettings:
     levels: IntProperty(name="Levels", default=2, min=0, max=4, description="Loop subdivision levels")
     uniform_levels: IntProperty(name="Uniform Levels", default=1, min=0, max=4,
                                 description="The first levels split every triangle, whatever the method")
-    threshold: FloatProperty(name="Threshold", default=0.9, min=0.0, max=1.0,
+    threshold: FloatProperty(name="Threshold", default=0.7, min=0.0, max=1.0,
                              description="Curvature method: triangles whose vertices all rank below this "
                                          "(equalised curvature, 0 to 1) stay as they are")
     measure: EnumProperty(
-        name="Measure", default="rms", description="The curvature that the curvature method ranks",
-        items=[("rms", "RMS", "sqrt((k1² + k2²)/2)"), ("gaussian", "Gaussian", "k1·k2 (signed)"),
+        name="Measure", default="tube-departure", description="The curvature that the curvature method ranks",
+        items=[("tube-departure", "Tube Departure",
+                "min(|k1|, |k2|) / max(|k1|, |k2|): how far the surface departs from a tube, the same for vessels "
+                "of every size"),
+               ("rms", "RMS", "sqrt((k1² + k2²)/2)"), ("gaussian", "Gaussian", "k1·k2 (signed)"),
                ("abs-gaussian", "|Gaussian|", "|k1·k2|"), ("mean", "Mean", "(k1 + k2)/2 (signed)"),
                ("abs-mean", "|Mean|", "|k1 + k2|/2")])
     angle: FloatProperty(name="Angle", default=160.0, min=0.0, max=180.0,
