@@ -26,6 +26,7 @@ enum class Kind {
   shared,     ///< between two joints, too short for a tube: one square is a face of both patches
   stub,       ///< from a joint to a terminal, too short for a tube: its terminal square joins the patch
   swallowed,  ///< between two joints that could not be parted: inside their merged patch
+  tunnel,     ///< would close a loop inside a merged patch: the loop's hole goes through the patch instead
 };
 
 /// One end of a branch at a joint, and the square that closes the patch there.
@@ -35,14 +36,42 @@ struct End {
   double t = 0;          ///< arc distance of the square from the joint
   bool stuck = false;    ///< pushed to the far end of its branch without clearing the other squares
   bool fixed = false;    ///< stub and shared squares stay where they are
+  bool chord = false;    ///< faces along the chord from the joint to its centre, not along the tangent
   Section square;        ///< normal points away from the joint, corners counter-clockwise about it
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
+};
+
+/// The hole of a loop closed inside a merged patch: a straight hole through the patch's hull, between two
+/// square mouths on opposite sides of the hull, each pushed out from the loop's centroid until it is a
+/// face of the hull. The loop's tubes overlap (that is why its joints merged), so the input has no hole
+/// to copy; a small one, well inside the patch, gives the surface the loop's genus.
+struct Tunnel {
+  Vec3 center = Vec3::Zero();  ///< the loop's centroid
+  Vec3 normal = Vec3::UnitZ();  ///< of the loop's best-fit plane
+  /// Directions of the head's and the tail's mouth: either side of the loop's plane, tilted away from
+  /// the mean centroid of the patch's loops by the loop's offset from it in loop radii, up to 27°, so
+  /// that the mouths of several loops in one patch fan out rather than push each other out without end.
+  std::array<Vec3, 2> out;
+  double radius = 0;  ///< the loop's mean radius
+  double hole() const { return 0.25 * radius; }
+  /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all.
+  double reach() const { return 4 * radius; }
+};
+
+/// A hull point of a patch that closes no opening, and the centerline point it stands for.
+struct RimPoint {
+  Vec3 at = Vec3::Zero(), axis = Vec3::Zero();
+  double radius = 0;
 };
 
 /// A joint patch: one joint, or several joints too close to part, and the branch ends that meet it.
 struct Patch {
   std::vector<int32_t> joints;  ///< joint points
   std::vector<int32_t> ends;    ///< indices into Tiler::ends_
+  /// Hull points that close no opening: around each tunnel, its loop's points at the height of the
+  /// tubes' corners on either side of the loop's plane, so that the hull covers the loop and surrounds
+  /// the hole even where no branch leaves the loop.
+  std::vector<RimPoint> rim;
 };
 
 class Tiler {
@@ -53,13 +82,16 @@ class Tiler {
     shared_at_.assign(g.branches.size(), 0.0);
     shared_up_.assign(g.branches.size(), Vec3::Zero());
     shared_vertex_.assign(g.branches.size(), -1);
+    tunnel_.resize(g.branches.size());
   }
 
   BaseMesh run() {
     find_patches();
     for (const Patch& p : patches_) build_patch(p);
-    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+    for (std::size_t b = 0; b < g_.branches.size(); ++b) {
       if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
+      if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
+    }
     drop_unused_vertices();
     return std::move(mesh_);
   }
@@ -73,6 +105,7 @@ class Tiler {
   std::vector<double> shared_at_;      // shared: arc position of the square from the branch's start
   std::vector<Vec3> shared_up_;        // shared: its up-vector
   std::vector<int32_t> shared_vertex_;  // shared: first corner vertex, corners as seen from the start
+  std::vector<Tunnel> tunnel_;          // tunnel: its hole
   std::vector<End> ends_;
   std::vector<int32_t> head_, tail_;  // per branch: its end at its first / last point, or -1
   std::vector<Patch> patches_;
@@ -83,16 +116,34 @@ class Tiler {
   int32_t last_point(int32_t b) const { return g_.branches[b].points.back(); }
   double scale() const { return opt_.radius_scale; }
 
-  /// The square of `e` at arc distance t from its joint (up-vector still to be chosen).
+  /// The square of `e` at arc distance t from its joint (up-vector still to be chosen). A tunnel's
+  /// mouths sit at distance t from the loop's centroid along its axis, the head's above, the tail's below.
   Section square_at(const End& e, double t) const {
+    Section q;
+    if (kind_[e.branch] == Kind::tunnel) {
+      const Tunnel& h = tunnel_[e.branch];
+      q.normal = h.out[e.at_start ? 0 : 1];
+      q.center = h.center + t * q.normal;
+      q.radius = h.hole();
+      return q;
+    }
     const BranchCurve& c = curves_[e.branch];
     const double s = e.at_start ? t : c.length() - t;
-    Section q;
     q.center = c.position(s);
     q.radius = c.radius_at(s);
-    const Vec3 tangent = c.tangent(s);
-    q.normal = e.at_start ? tangent : -tangent;
+    const Vec3 chord = q.center - (e.at_start ? c.points.front() : c.points.back());
+    if (e.chord && chord.norm() > 0.1 * q.radius) {
+      q.normal = chord.normalized();
+    } else {
+      const Vec3 tangent = c.tangent(s);
+      q.normal = e.at_start ? tangent : -tangent;
+    }
     return q;
+  }
+
+  /// How far the square of `e` may move from its joint: to the far end of its branch.
+  double reach(const End& e) const {
+    return kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].reach() : curves_[e.branch].length();
   }
 
   /// Up-vectors for a patch's free squares: the projection of the patch's reference direction (the
@@ -101,7 +152,9 @@ class Tiler {
   /// coplanar.
   void orient_squares(const Patch& p, int attempt) {
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    for (int32_t i : p.ends) m += ends_[i].square.normal * ends_[i].square.normal.transpose();
+    // Tunnel mouths face along the loop's normal, which is this plane's normal already.
+    for (int32_t i : p.ends)
+      if (kind_[ends_[i].branch] != Kind::tunnel) m += ends_[i].square.normal * ends_[i].square.normal.transpose();
     const Vec3 ref = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvectors().col(0);
     for (std::size_t i = 0; i < p.ends.size(); ++i) {
       End& e = ends_[p.ends[i]];
@@ -122,23 +175,42 @@ class Tiler {
       if (&ends_[i] != &e)
         for (int k = 0; k < 4; ++k)
           reach = std::max(reach, e.square.normal.dot(ends_[i].square.corner(k, scale()) - e.square.center));
+    for (const RimPoint& r : p.rim) reach = std::max(reach, e.square.normal.dot(r.at - e.square.center));
     return reach + margin;
   }
 
   /// Pushes each free square along its branch until it is a face of the patch's hull. Stub and shared
-  /// squares stay put; a square that reaches the far end of its branch is marked stuck.
+  /// squares stay put; a square that reaches the far end of its branch is marked stuck. A square that
+  /// the turn of its branch's tangent pushes to the far end is tried again facing along its chord: on
+  /// a short or sharply bent branch the tangent there can point back across the patch, so that the
+  /// squares keep pushing each other along, where the chord points away from the joint.
   void place_squares(const Patch& p, int attempt) {
+    for (int32_t i : p.ends) ends_[i].chord = false;
+    for (;;) {
+      push_squares(p, attempt);
+      bool again = false;
+      for (int32_t i : p.ends) {
+        End& e = ends_[i];
+        if (e.stuck && !e.chord && kind_[e.branch] != Kind::tunnel) e.chord = again = true;
+      }
+      if (!again) return;
+    }
+  }
+
+  void push_squares(const Patch& p, int attempt) {
     for (int32_t i : p.ends) {
       End& e = ends_[i];
       const BranchCurve& c = curves_[e.branch];
       e.stuck = false;
-      e.fixed = kind_[e.branch] != Kind::tube;
+      e.fixed = kind_[e.branch] == Kind::stub || kind_[e.branch] == Kind::shared;
       if (kind_[e.branch] == Kind::stub) {
         e.t = c.length();
       } else if (kind_[e.branch] == Kind::shared) {
         e.t = e.at_start ? shared_at_[e.branch] : c.length() - shared_at_[e.branch];
       } else {
-        e.t = std::min(c.length(), 0.25 * c.radius_at(e.at_start ? 0 : c.length()) * (1 + attempt));
+        const double r = kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].hole()
+                                                          : c.radius_at(e.at_start ? 0 : c.length());
+        e.t = std::min(reach(e), 0.25 * r * (1 + attempt));
       }
       e.square = square_at(e, e.t);
       if (kind_[e.branch] == Kind::shared) e.square.up = shared_up_[e.branch];
@@ -152,7 +224,7 @@ class Tiler {
         const double overlap = intrusion(e, p);
         if (overlap <= 0) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
-        const double length = curves_[e.branch].length();
+        const double length = reach(e);
         e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
@@ -194,16 +266,28 @@ class Tiler {
   }
 
   /// Groups joints into patches and decides each branch's kind. A branch between two joints too short
-  /// for a tube first tries one shared square; failing that, its joints merge into one patch. A branch
-  /// from a joint to a terminal too short for a tube becomes a stub. Repeated until nothing changes.
+  /// for a tube first tries one shared square; failing that, its joints merge into one patch, or, when
+  /// they share one already, it becomes a tunnel. A branch from a joint to a terminal too short for a
+  /// tube becomes a stub. Repeated until nothing changes.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
       for (const Patch& p : patches_) place_squares(p, 0);
+      // A tunnel whose mouths cannot clear the patch gives the loop up; the patch is placed again
+      // without it before anything else is decided, as its mouths may have pushed the other squares.
       bool changed = false;
+      for (std::size_t b = 0; b < g_.branches.size(); ++b)
+        if (kind_[b] == Kind::tunnel && (ends_[head_[b]].stuck || ends_[tail_[b]].stuck)) {
+          kind_[b] = Kind::swallowed;
+          --mesh_.tunnels;
+          changed = true;
+        }
+      if (changed) continue;
       for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
         const int32_t b = static_cast<int32_t>(bi);
-        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || (head_[b] < 0 && tail_[b] < 0)) continue;
+        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
+            (head_[b] < 0 && tail_[b] < 0))
+          continue;
         const bool both = head_[b] >= 0 && tail_[b] >= 0;
         if (kind_[b] == Kind::shared) {
           const Patch& hp = patches_[patch_of_end_[head_[b]]];
@@ -220,6 +304,12 @@ class Tiler {
         if (!both) {
           kind_[b] = Kind::stub;
           ++mesh_.absorbed_branches;
+        } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
+          // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
+          // a forest, and the branch that would close the loop makes the hole a tunnel instead.
+          kind_[b] = Kind::tunnel;
+          ++mesh_.absorbed_branches;
+          ++mesh_.tunnels;
         } else if (kind_[b] == Kind::tube && best_shared_square(b) > 0) {
           kind_[b] = Kind::shared;
           shared_up_[b] = any_perpendicular(curves_[b].tangent(shared_at_[b]));
@@ -265,6 +355,80 @@ class Tiler {
         ends_.push_back(e);
       }
     }
+    find_tunnel_holes();
+  }
+
+  /// Each tunnel's hole from its loop: the tunnel's branch and the path of swallowed branches (a tree
+  /// in each patch) between its joints. Centroid and plane are those of the loop's edges, weighted by length.
+  void find_tunnel_holes() {
+    std::map<int32_t, std::vector<int32_t>> swallowed_at;  // joint → swallowed branches that meet it
+    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+      if (kind_[b] == Kind::swallowed)
+        for (int32_t v : {first_point(b), last_point(b)}) swallowed_at[v].push_back(static_cast<int32_t>(b));
+    for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+      if (kind_[bi] != Kind::tunnel) continue;
+      const int32_t b = static_cast<int32_t>(bi);
+      // Breadth-first from the branch's last point through the tree to its first.
+      std::map<int32_t, int32_t> reached_by{{last_point(b), -1}};
+      std::vector<int32_t> queue{last_point(b)};
+      for (std::size_t q = 0; q < queue.size() && !reached_by.count(first_point(b)); ++q)
+        for (int32_t s : swallowed_at[queue[q]]) {
+          const int32_t next = first_point(s) == queue[q] ? last_point(s) : first_point(s);
+          if (reached_by.emplace(next, s).second) queue.push_back(next);
+        }
+      std::vector<int32_t> loop{b};
+      for (int32_t v = first_point(b); reached_by.at(v) >= 0;) {
+        const int32_t s = reached_by.at(v);
+        loop.push_back(s);
+        v = first_point(s) == v ? last_point(s) : first_point(s);
+      }
+      double length = 0, radius = 0;
+      Vec3 center = Vec3::Zero();
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i + 1 < curves_[s].points.size(); ++i) {
+          const double l = curves_[s].arc[i + 1] - curves_[s].arc[i];
+          length += l;
+          center += l * 0.5 * (curves_[s].points[i] + curves_[s].points[i + 1]);
+          radius += l * 0.5 * (curves_[s].radius[i] + curves_[s].radius[i + 1]);
+        }
+      center /= length;
+      Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i + 1 < curves_[s].points.size(); ++i) {
+          const double l = curves_[s].arc[i + 1] - curves_[s].arc[i];
+          const Vec3 d = 0.5 * (curves_[s].points[i] + curves_[s].points[i + 1]) - center;
+          spread += l * d * d.transpose();
+        }
+      Tunnel& h = tunnel_[b];
+      h.center = center;
+      h.radius = radius / length;
+      h.normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+      Patch& p = patches_[patch_of_end_[head_[b]]];
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i < curves_[s].points.size(); ++i)
+          for (double side : {1.0, -1.0}) {
+            RimPoint r;
+            r.axis = curves_[s].points[i];
+            r.radius = curves_[s].radius[i];
+            r.at = r.axis + side * scale() * r.radius * h.normal;
+            p.rim.push_back(r);
+          }
+    }
+    for (const Patch& p : patches_) {
+      std::vector<int32_t> tunnels;
+      Vec3 mean = Vec3::Zero();
+      for (int32_t i : p.ends)
+        if (kind_[ends_[i].branch] == Kind::tunnel && ends_[i].at_start)
+          tunnels.push_back(ends_[i].branch), mean += tunnel_[ends_[i].branch].center;
+      mean /= std::max<double>(1, static_cast<double>(tunnels.size()));
+      for (int32_t b : tunnels) {
+        Tunnel& h = tunnel_[b];
+        Vec3 tilt = (h.center - mean) / h.radius;
+        tilt -= tilt.dot(h.normal) * h.normal;
+        if (tilt.norm() > 0.5) tilt *= 0.5 / tilt.norm();
+        h.out = {(h.normal + tilt).normalized(), (tilt - h.normal).normalized()};
+      }
+    }
   }
 
   int32_t add_section(const Section& s) {
@@ -295,15 +459,36 @@ class Tiler {
     return {first, first + 3, first + 2, first + 1};
   }
 
+  /// Closes the patch. Where its hull cannot close around a tunnel, the tunnel's loop is given up (its
+  /// branch is swallowed) and the patch tried again without it.
+  void build_patch(Patch p) {
+    while (!close_patch(p)) {
+      const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
+                                       [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
+      if (tunnel == p.ends.end()) {
+        const Vec3& at = g_.points[p.joints[0]];
+        throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
+                                 ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+      }
+      const int32_t b = ends_[*tunnel].branch;
+      kind_[b] = Kind::swallowed;
+      --mesh_.tunnels;
+      p.ends.erase(std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
+                   p.ends.end());
+    }
+  }
+
   /// The convex hull of the patch's squares with the tubes' and shared squares cut out. When exact
   /// coplanarity spoils the hull (the check below is exact), retried with other square turns and the
-  /// free squares pushed further out.
-  void build_patch(const Patch& p) {
+  /// free squares pushed further out. False when no attempt closes it.
+  bool close_patch(const Patch& p) {
+    const int32_t squares = static_cast<int32_t>(p.ends.size());
     for (int attempt = 0; attempt < 8; ++attempt) {
       if (attempt > 0) place_squares(p, attempt);
       std::vector<Vec3> corners;
       for (int32_t i : p.ends)
         for (int k = 0; k < 4; ++k) corners.push_back(ends_[i].square.corner(k, scale()));
+      for (const RimPoint& r : p.rim) corners.push_back(r.at);
       // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
       // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar
       // square would otherwise come back with both diagonals).
@@ -311,7 +496,7 @@ class Tiler {
       std::vector<int> stub_side(p.ends.size(), 0);  // +1: the stub square faces outwards, −1: inwards
       for (const Tri& t : convex_hull(corners)) {
         const int32_t square = t[0] / 4;
-        if (t[1] / 4 != square || t[2] / 4 != square) {
+        if (square >= squares || t[1] / 4 != square || t[2] / 4 != square) {
           patch.push_back(t);
           continue;
         }
@@ -334,13 +519,17 @@ class Tiler {
         ends_[i].first_vertex = v[0];
         id.insert(id.end(), v.begin(), v.end());
       }
+      for (const RimPoint& r : p.rim) {
+        id.push_back(static_cast<int32_t>(mesh_.vertices.size()));
+        mesh_.vertices.push_back(r.at);
+        mesh_.axis.push_back(r.axis);
+        mesh_.axis_radius.push_back(r.radius);
+      }
       for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
       ++mesh_.joints;
-      return;
+      return true;
     }
-    const Vec3& at = g_.points[p.joints[0]];
-    throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
-                             ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+    return false;
   }
 
   /// The patch must use each opening's edges once, against the square's direction (the tube or the
@@ -362,6 +551,12 @@ class Tiler {
       if (count == 0) continue;
       const auto it = directed.find({edge.second, edge.first});
       if (count != 1 || it == directed.end() || it->second != 1) return false;
+      // An edge from one mouth of a tunnel to the other would leave the hole no wall on that side (and
+      // the tunnel's own quads may use it).
+      const std::size_t s = edge.first / 4, t = edge.second / 4;
+      if (s != t && s < p.ends.size() && t < p.ends.size() && ends_[p.ends[s]].branch == ends_[p.ends[t]].branch &&
+          kind_[ends_[p.ends[s]].branch] == Kind::tunnel)
+        return false;
     }
     return true;
   }
@@ -412,6 +607,24 @@ class Tiler {
       if (!head) mesh_.quads.push_back({ids[0][3], ids[0][2], ids[0][1], ids[0][0]});
       if (!tail) mesh_.quads.push_back({ids[m][0], ids[m][1], ids[m][2], ids[m][3]});
     }
+  }
+
+  /// The tunnel's hole: four quads straight through the patch from its head mouth to its tail mouth,
+  /// facing the hole's axis. Seen along the head's normal, the tail's corners run clockwise, so head
+  /// corner j pairs with tail corner (k − j) mod 4, for the quarter turn k that pairs them closest.
+  void build_tunnel(int32_t b) {
+    const int32_t head = ends_[head_[b]].first_vertex, tail = ends_[tail_[b]].first_vertex;
+    auto paired = [](int k, int j) { return ((k - j) % 4 + 4) % 4; };
+    int best = 0;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+      double distance = 0;
+      for (int j = 0; j < 4; ++j)
+        distance += (mesh_.vertices[head + j] - mesh_.vertices[tail + paired(k, j)]).squaredNorm();
+      if (distance < best_distance) best_distance = distance, best = k;
+    }
+    for (int j = 0; j < 4; ++j)
+      mesh_.quads.push_back({head + j, head + (j + 1) % 4, tail + paired(best, j + 1), tail + paired(best, j)});
   }
 
   /// Stub squares that ended up inside a patch's hull are not used by any face.

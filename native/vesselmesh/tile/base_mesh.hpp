@@ -34,6 +34,7 @@ struct BaseMesh {
   int64_t sections = 0;                       ///< cross-sections, joint squares included
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
+  int64_t tunnels = 0;  ///< of those, branches that close a loop inside a patch: the loop's hole goes through it
 };
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options);
