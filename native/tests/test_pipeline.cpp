@@ -71,6 +71,15 @@ TEST_P(JointKind, OpenCapsLeaveOneSquareHolePerTerminal) {
 INSTANTIATE_TEST_SUITE_P(Fixtures, JointKind, testing::ValuesIn(fixtures::joint_kinds()),
                          [](const auto& info) { return info.param.name; });
 
+TEST(Pipeline, LoopsTooShortToPartKeepTheirHoleAsATunnel) {
+  // The joints of these loops merge into one patch; the loop's genus comes from a tunnel through it.
+  for (const auto& [name, make] : {std::pair{"lens", fixtures::lens}, std::pair{"short_loop", fixtures::short_loop}}) {
+    const MeshResult r = mesh_at(build_graph(make(1.0)), 0);
+    EXPECT_EQ(r.joint_patches, 1) << name;
+    EXPECT_EQ(r.tunnels, 1) << name;
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {
