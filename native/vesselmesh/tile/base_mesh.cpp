@@ -561,6 +561,26 @@ class Tiler {
     return true;
   }
 
+  /// Whether the squares of consecutive sections a and b (normals along the travel, each square bounded
+  /// by its corners' circle) reach across each other's planes: b's behind a's, or a's ahead of b's.
+  bool crosses(const Section& a, const Section& b) const {
+    const double sine = std::sqrt(std::max(0.0, 1 - std::pow(a.normal.dot(b.normal), 2)));
+    return a.normal.dot(b.center - a.center) < scale() * b.radius * sine ||
+           b.normal.dot(b.center - a.center) < scale() * a.radius * sine;
+  }
+
+  /// Drops the inner sections whose squares cross the plane of the section kept before them, or of the
+  /// last: the tube would fold there (a bend tighter than the corners' radius, or a joint square
+  /// facing along its chord while the branch turns). The end sections stay.
+  void drop_folds(std::vector<Section>& sections) const {
+    std::vector<Section> kept{sections.front()};
+    for (std::size_t i = 1; i + 1 < sections.size(); ++i)
+      if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
+    while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
+    kept.push_back(sections.back());
+    sections = std::move(kept);
+  }
+
   void build_tube(int32_t b) {
     const BranchCurve& c = curves_[b];
     const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
@@ -570,16 +590,17 @@ class Tiler {
     std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
     if (ring && arcs.size() < 4) arcs = {0.0, c.length() / 3, 2 * c.length() / 3, c.length()};
 
-    const std::size_t m = arcs.size() - 1;
-    std::vector<Section> sections(m + 1);
-    for (std::size_t i = 0; i <= m; ++i) {
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
       sections[i].center = c.position(arcs[i]);
       sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
     }
     if (ring) sections.back().center = sections.front().center;
-    for (std::size_t i = 0; i <= m; ++i) sections[i].normal = c.tangent(arcs[i]);
     if (head) sections.front().normal = head->square.normal;
     if (tail) sections.back().normal = -tail->square.normal;
+    if (!ring) drop_folds(sections);
+    const std::size_t m = sections.size() - 1;
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
