@@ -273,15 +273,25 @@ class Tiler {
     for (int round = 0;; ++round) {
       collect_patches();
       for (const Patch& p : patches_) place_squares(p, 0);
-      // A tunnel whose mouths cannot clear the patch gives the loop up; the patch is placed again
-      // without it before anything else is decided, as its mouths may have pushed the other squares.
+      // A tunnel whose mouths cannot clear the patch, or come close to another tunnel's (two loops of
+      // nearly the same centre), gives its loop up; the patch is placed again without it before anything
+      // else is decided, as its mouths may have pushed the other squares.
       bool changed = false;
-      for (std::size_t b = 0; b < g_.branches.size(); ++b)
-        if (kind_[b] == Kind::tunnel && (ends_[head_[b]].stuck || ends_[tail_[b]].stuck)) {
+      for (const Patch& p : patches_) {
+        std::vector<int32_t> kept;
+        for (int32_t i : p.ends) {
+          const int32_t b = ends_[i].branch;
+          if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
+          const bool clash = std::any_of(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
+          if (!clash && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
+            kept.push_back(b);
+            continue;
+          }
           kind_[b] = Kind::swallowed;
           --mesh_.tunnels;
           changed = true;
         }
+      }
       if (changed) continue;
       for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
         const int32_t b = static_cast<int32_t>(bi);
@@ -324,6 +334,17 @@ class Tiler {
   }
 
   std::vector<int32_t> patch_of_end_;
+
+  /// Whether a mouth of tunnel a comes within twice the corners' reach of a mouth of tunnel b, so that
+  /// the hull would leave no wall between the two holes.
+  bool mouths_meet(int32_t a, int32_t b) const {
+    for (int32_t i : {head_[a], tail_[a]})
+      for (int32_t j : {head_[b], tail_[b]}) {
+        const Section &p = ends_[i].square, &q = ends_[j].square;
+        if ((p.center - q.center).norm() < 2 * scale() * (p.radius + q.radius)) return true;
+      }
+    return false;
+  }
 
   void collect_patches() {
     ends_.clear();
