@@ -32,12 +32,12 @@ enum class Kind {
 /// One end of a branch at a joint, and the square that closes the patch there.
 struct End {
   int32_t branch = -1;
-  bool at_start = true;  ///< the joint is the branch's first point
-  double t = 0;          ///< arc distance of the square from the joint
-  bool stuck = false;    ///< pushed to the far end of its branch without clearing the other squares
-  bool fixed = false;    ///< stub and shared squares stay where they are
-  bool chord = false;    ///< faces along the chord from the joint to its centre, not along the tangent
-  Section square;        ///< normal points away from the joint, corners counter-clockwise about it
+  bool at_start = true;       ///< the joint is the branch's first point
+  double t = 0;               ///< arc distance of the square from the joint
+  bool stuck = false;         ///< pushed to the far end of its branch without clearing the other squares
+  bool fixed = false;         ///< stub and shared squares stay where they are
+  bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
+  Section square;             ///< normal points away from the joint, corners counter-clockwise about it
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
 };
 
@@ -46,7 +46,7 @@ struct End {
 /// face of the hull. The loop's tubes overlap (that is why its joints merged), so the input has no hole
 /// to copy; a small one, well inside the patch, gives the surface the loop's genus.
 struct Tunnel {
-  Vec3 center = Vec3::Zero();  ///< the loop's centroid
+  Vec3 center = Vec3::Zero();   ///< the loop's centroid
   Vec3 normal = Vec3::UnitZ();  ///< of the loop's best-fit plane
   /// Directions of the head's and the tail's mouth: either side of the loop's plane, tilted away from
   /// the mean centroid of the patch's loops by the loop's offset from it in loop radii, up to 27°, so
@@ -102,8 +102,8 @@ class Tiler {
   UnionFind joints_;  // joints that share a patch
   std::vector<BranchCurve> curves_;
   std::vector<Kind> kind_;
-  std::vector<double> shared_at_;      // shared: arc position of the square from the branch's start
-  std::vector<Vec3> shared_up_;        // shared: its up-vector
+  std::vector<double> shared_at_;       // shared: arc position of the square from the branch's start
+  std::vector<Vec3> shared_up_;         // shared: its up-vector
   std::vector<int32_t> shared_vertex_;  // shared: first corner vertex, corners as seen from the start
   std::vector<Tunnel> tunnel_;          // tunnel: its hole
   std::vector<End> ends_;
@@ -117,7 +117,8 @@ class Tiler {
   double scale() const { return opt_.radius_scale; }
 
   /// The square of `e` at arc distance t from its joint (up-vector still to be chosen). A tunnel's
-  /// mouths sit at distance t from the loop's centroid along its axis, the head's above, the tail's below.
+  /// mouths sit at distance t from the loop's centroid, the head's on one side of the loop's plane, the
+  /// tail's on the other.
   Section square_at(const End& e, double t) const {
     Section q;
     if (kind_[e.branch] == Kind::tunnel) {
@@ -141,7 +142,8 @@ class Tiler {
     return q;
   }
 
-  /// How far the square of `e` may move from its joint: to the far end of its branch.
+  /// How far the square of `e` may move: to the far end of its branch; a tunnel's mouth, up to the
+  /// tunnel's reach from the loop's centroid.
   double reach(const End& e) const {
     return kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].reach() : curves_[e.branch].length();
   }
@@ -152,9 +154,10 @@ class Tiler {
   /// coplanar.
   void orient_squares(const Patch& p, int attempt) {
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    // Tunnel mouths face along the loop's normal, which is this plane's normal already.
+    // Tunnel mouths are left out: they face along their loop's normal, not along a branch.
     for (int32_t i : p.ends)
-      if (kind_[ends_[i].branch] != Kind::tunnel) m += ends_[i].square.normal * ends_[i].square.normal.transpose();
+      if (kind_[ends_[i].branch] != Kind::tunnel)
+        m += ends_[i].square.normal * ends_[i].square.normal.transpose();
     const Vec3 ref = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvectors().col(0);
     for (std::size_t i = 0; i < p.ends.size(); ++i) {
       End& e = ends_[p.ends[i]];
@@ -209,7 +212,7 @@ class Tiler {
         e.t = e.at_start ? shared_at_[e.branch] : c.length() - shared_at_[e.branch];
       } else {
         const double r = kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].hole()
-                                                          : c.radius_at(e.at_start ? 0 : c.length());
+                                                         : c.radius_at(e.at_start ? 0 : c.length());
         e.t = std::min(reach(e), 0.25 * r * (1 + attempt));
       }
       e.square = square_at(e, e.t);
@@ -282,7 +285,8 @@ class Tiler {
         for (int32_t i : p.ends) {
           const int32_t b = ends_[i].branch;
           if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
-          const bool clash = std::any_of(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
+          const bool clash =
+              std::any_of(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
           if (!clash && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
             kept.push_back(b);
             continue;
@@ -488,14 +492,16 @@ class Tiler {
                                        [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
       if (tunnel == p.ends.end()) {
         const Vec3& at = g_.points[p.joints[0]];
-        throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
-                                 ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+        throw std::runtime_error("could not close the surface around the joint at (" +
+                                 std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
+                                 std::to_string(at.z()) + ")");
       }
       const int32_t b = ends_[*tunnel].branch;
       kind_[b] = Kind::swallowed;
       --mesh_.tunnels;
-      p.ends.erase(std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
-                   p.ends.end());
+      p.ends.erase(
+          std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
+          p.ends.end());
     }
   }
 
@@ -526,7 +532,8 @@ class Tiler {
       }
       for (std::size_t s = 0; s < p.ends.size(); ++s) {
         // With open caps a stub's terminal square on the hull stays open, like any other terminal.
-        if (kind_[ends_[p.ends[s]].branch] != Kind::stub || stub_side[s] == 0 || opt_.caps == Caps::open) continue;
+        if (kind_[ends_[p.ends[s]].branch] != Kind::stub || stub_side[s] == 0 || opt_.caps == Caps::open)
+          continue;
         const int32_t q = static_cast<int32_t>(4 * s);
         if (stub_side[s] > 0)
           patch.insert(patch.end(), {Tri{q, q + 1, q + 2}, Tri{q, q + 2, q + 3}});
@@ -575,7 +582,8 @@ class Tiler {
       // An edge from one mouth of a tunnel to the other would leave the hole no wall on that side (and
       // the tunnel's own quads may use it).
       const std::size_t s = edge.first / 4, t = edge.second / 4;
-      if (s != t && s < p.ends.size() && t < p.ends.size() && ends_[p.ends[s]].branch == ends_[p.ends[t]].branch &&
+      if (s != t && s < p.ends.size() && t < p.ends.size() &&
+          ends_[p.ends[s]].branch == ends_[p.ends[t]].branch &&
           kind_[ends_[p.ends[s]].branch] == Kind::tunnel)
         return false;
     }
@@ -666,7 +674,8 @@ class Tiler {
       if (distance < best_distance) best_distance = distance, best = k;
     }
     for (int j = 0; j < 4; ++j)
-      mesh_.quads.push_back({head + j, head + (j + 1) % 4, tail + paired(best, j + 1), tail + paired(best, j)});
+      mesh_.quads.push_back(
+          {head + j, head + (j + 1) % 4, tail + paired(best, j + 1), tail + paired(best, j)});
   }
 
   /// Stub squares that ended up inside a patch's hull are not used by any face.
