@@ -101,6 +101,36 @@ inline CenterlineData short_segment(double scale) {
   run(d, b, Vec3(0, 0, 10 * scale), 10, 0.9 * scale);
   return d;
 }
+/// Two joints joined by two short parallel branches (a loop 2 radii long whose tubes overlap), with a
+/// trunk in and one out.
+inline CenterlineData lens(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
+  const int32_t a = run(d, 0, Vec3::Zero(), 10, 1 * scale);
+  int32_t b = -1;
+  for (double side : {-1.0, 1.0}) {
+    const int32_t bend = run(d, a, Vec3(side * 0.4 * scale, 0, 0.5 * scale), 1, 0.6 * scale);
+    const int32_t last = run(d, bend, Vec3(side * 0.4 * scale, 0, 1.5 * scale), 1, 0.6 * scale);
+    if (b < 0) {
+      b = run(d, last, Vec3(0, 0, 2 * scale), 1, 1 * scale);
+    } else {
+      d.edges.push_back({last, b});
+    }
+  }
+  run(d, b, Vec3(0, 0, 12 * scale), 10, 1 * scale);
+  return d;
+}
+/// A triangle of branches 2.5 radii long (shorter than their joints need to part), each corner with a
+/// branch leading away.
+inline CenterlineData short_loop(double scale) {
+  std::array<Vec3, 3> at;
+  for (int i = 0; i < 3; ++i) at[i] = 2.5 / std::sqrt(3.0) * scale * dir(90 + 120 * i);
+  CenterlineData d = start(at[0], 0.8 * scale);
+  const int32_t second = run(d, 0, at[1], 2, 0.8 * scale);
+  const int32_t third = run(d, second, at[2], 2, 0.8 * scale);
+  d.edges.push_back({run(d, third, 0.5 * (at[2] + at[0]), 1, 0.8 * scale), 0});
+  for (int32_t c : {0, second, third}) run(d, c, d.points[c] * (12 / (2.5 / std::sqrt(3.0))), 10, 0.8 * scale);
+  return d;
+}
 /// A quarter circle of bend radius `bend` (in radii) of a vessel of radius 1, densely sampled.
 inline CenterlineData bend(double bend_radii, double scale) {
   CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
@@ -153,6 +183,8 @@ inline std::vector<Named> joint_kinds() {
       {"loop", loop, 1},
       {"tiny_angle_5deg", [](double s) { return tiny_angle(5, s); }, 0},
       {"short_segment", short_segment, 0},
+      {"lens", lens, 1},
+      {"short_loop", short_loop, 1},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
       {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},

@@ -71,6 +71,15 @@ TEST_P(JointKind, OpenCapsLeaveOneSquareHolePerTerminal) {
 INSTANTIATE_TEST_SUITE_P(Fixtures, JointKind, testing::ValuesIn(fixtures::joint_kinds()),
                          [](const auto& info) { return info.param.name; });
 
+TEST(Pipeline, LoopsTooShortToPartKeepTheirHoleAsATunnel) {
+  // The joints of these loops merge into one patch; the loop's genus comes from a tunnel through it.
+  for (const auto& [name, make] : {std::pair{"lens", fixtures::lens}, std::pair{"short_loop", fixtures::short_loop}}) {
+    const MeshResult r = mesh_at(build_graph(make(1.0)), 0);
+    EXPECT_EQ(r.joint_patches, 1) << name;
+    EXPECT_EQ(r.tunnels, 1) << name;
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {
@@ -144,21 +153,6 @@ TEST_P(SharedSurface, BaseAndSubdividedSurfacesAreClosedWithTheRightGenus) {
   for (int levels : {0, 1, 2}) expect_closed_surface(mesh_at(g, levels).mesh, g, path + " level " + std::to_string(levels));
 }
 
-// Not met yet on every set (see the note on issue 3): loops whose branches are too short to part
-// are absorbed into one joint patch (genus too low on secomb-rat-mesentery and vesselgraph-demo), and
-// tubes cross where the input's do not. Run with --gtest_also_run_disabled_tests.
-TEST_P(SharedSurface, DISABLED_NoSelfIntersectionsOutsideOverlappingInputTubes) {
-  SHARED_DATA_OR_SKIP(path, GetParam().file);
-  const CenterlineGraph g = build_graph(read_centerline(path));
-  for (int levels : {0, 1, 2}) {
-    const IntersectionReport r = find_self_intersections(mesh_at(g, levels).mesh, &g);
-    if (GetParam().tree)
-      EXPECT_EQ(r.pairs, 0) << path << " level " << levels;
-    else
-      EXPECT_EQ(r.pairs - r.pairs_in_overlapping_tubes, 0) << path << " level " << levels;
-  }
-}
-
 const SharedCase kSharedCases[] = {
     {"brava-bg0003/BG0003_ColorCoded.CNG.swc", true},
     {"human-brain-arteries/arteries_smooth.vtk", true},
@@ -167,11 +161,12 @@ const SharedCase kSharedCases[] = {
     {"vascpy-mouse-vessels/test_smaller_vasculature.vtk", true},
     {"neuron-hemibrain-da1/1734350788.swc", true},
     {"secomb-rat-cortex-50/network.vtk", false},
+    {"secomb-rat-mesentery/network.vtk", false},
 };
 
-// The looped networks where a loop can still be absorbed (see above).
+// The looped network where loops can still be absorbed: a loop whose tunnel's mouths cannot clear its
+// patch within 4 loop radii, or come close to another tunnel's, is given up (47 of 53 loops kept).
 const SharedCase kAbsorbingCases[] = {
-    {"secomb-rat-mesentery/network.vtk", false},
     {"vesselgraph-demo/vertices.csv", false},
 };
 
@@ -183,6 +178,49 @@ std::string case_name(const testing::TestParamInfo<SharedCase>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedSurface, testing::ValuesIn(kSharedCases), case_name);
+
+void expect_no_self_intersections_outside_overlapping_input_tubes(const SharedCase& c) {
+  SHARED_DATA_OR_SKIP(path, c.file);
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  for (int levels : {0, 1, 2}) {
+    const IntersectionReport r = find_self_intersections(mesh_at(g, levels).mesh, &g);
+    if (c.tree)
+      EXPECT_EQ(r.pairs, 0) << path << " level " << levels;
+    else
+      EXPECT_EQ(r.pairs - r.pairs_in_overlapping_tubes, 0) << path << " level " << levels;
+  }
+}
+
+class SharedUntangled : public testing::TestWithParam<SharedCase> {};
+
+TEST_P(SharedUntangled, NoSelfIntersectionsOutsideOverlappingInputTubes) {
+  expect_no_self_intersections_outside_overlapping_input_tubes(GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, SharedUntangled,
+                         testing::Values(SharedCase{"human-brain-arteries/arteries_smooth.vtk", true},
+                                         SharedCase{"vmtk-aorta-centerline/aorta-centerline.vtp", true},
+                                         SharedCase{"vascpy-mouse-vessels/penetrating_artery.vtk", true},
+                                         SharedCase{"vascpy-mouse-vessels/test_smaller_vasculature.vtk", true},
+                                         SharedCase{"secomb-rat-cortex-50/network.vtk", false},
+                                         SharedCase{"secomb-rat-mesentery/network.vtk", false},
+                                         SharedCase{"vesselgraph-demo/vertices.csv", false}),
+                         case_name);
+
+// Not met yet (level 2 figures of mesh_at). brava-bg0003 is a tree whose input tubes overlap: its 561
+// pairs all lie where they do, but a tree must have none. neuron-hemibrain-da1: 242 of its 245 pairs lie
+// outside overlapping input tubes, among very thin branches most of which are too short for a tube.
+// Run with --gtest_also_run_disabled_tests.
+class SharedTangled : public testing::TestWithParam<SharedCase> {};
+
+TEST_P(SharedTangled, DISABLED_NoSelfIntersectionsOutsideOverlappingInputTubes) {
+  expect_no_self_intersections_outside_overlapping_input_tubes(GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, SharedTangled,
+                         testing::Values(SharedCase{"brava-bg0003/BG0003_ColorCoded.CNG.swc", true},
+                                         SharedCase{"neuron-hemibrain-da1/1734350788.swc", true}),
+                         case_name);
 
 class SharedSurfaceAbsorbing : public testing::TestWithParam<SharedCase> {};
 
@@ -197,6 +235,7 @@ TEST_P(SharedSurfaceAbsorbing, SurfaceIsClosedManifoldWithOneComponentPerInputCo
   }
 }
 
+// Not met yet: vesselgraph-demo has genus 47 of its 53 loops (see kAbsorbingCases).
 TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
   SHARED_DATA_OR_SKIP(path, GetParam().file);
   const CenterlineGraph g = build_graph(read_centerline(path));

@@ -35,6 +35,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.sections = base.sections;
   result.joint_patches = base.joints;
   result.absorbed_branches = base.absorbed_branches;
+  result.tunnels = base.tunnels;
 
   start = Clock::now();
   result.mesh = triangulate(base);
@@ -65,6 +66,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["sections"] = result.sections;
   j["joint_patches"] = result.joint_patches;
   j["absorbed_branches"] = result.absorbed_branches;
+  j["tunnels"] = result.tunnels;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   double total = 0;

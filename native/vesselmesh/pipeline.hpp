@@ -32,7 +32,7 @@ struct MeshResult {
   std::vector<uint8_t> transition;  ///< per face: 1 for a crack-closing triangle of adaptive subdivision
   std::vector<double> tagged;       ///< per level: the fraction of triangles it tagged for splitting
   std::vector<StageStats> stages;
-  int64_t sections = 0, joint_patches = 0, absorbed_branches = 0;
+  int64_t sections = 0, joint_patches = 0, absorbed_branches = 0, tunnels = 0;
 };
 
 /// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices

@@ -26,71 +26,53 @@ enum class Kind {
   shared,     ///< between two joints, too short for a tube: one square is a face of both patches
   stub,       ///< from a joint to a terminal, too short for a tube: its terminal square joins the patch
   swallowed,  ///< between two joints that could not be parted: inside their merged patch
+  tunnel,     ///< would close a loop inside a merged patch: the loop's hole goes through the patch instead
 };
 
 /// One end of a branch at a joint, and the square that closes the patch there.
 struct End {
   int32_t branch = -1;
-  bool at_start = true;  ///< the joint is the branch's first point
-  double t = 0;          ///< arc distance of the square from the joint
-  bool stuck = false;    ///< pushed to the far end of its branch without clearing the other squares
-  bool fixed = false;    ///< stub and shared squares stay where they are
-  Section square;        ///< normal points away from the joint, corners counter-clockwise about it
+  bool at_start = true;       ///< the joint is the branch's first point
+  double t = 0;               ///< arc distance of the square from the joint
+  bool stuck = false;         ///< pushed to the far end of its branch without clearing the other squares
+  bool fixed = false;         ///< stub and shared squares stay where they are
+  bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
+  Section square;             ///< normal points away from the joint, corners counter-clockwise about it
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
+};
+
+/// The hole of a loop closed inside a merged patch: a straight hole through the patch's hull, between two
+/// square mouths on opposite sides of the hull, each pushed out from the loop's centroid until it is a
+/// face of the hull. The loop's tubes overlap (that is why its joints merged), so the input has no hole
+/// to copy; a small one, well inside the patch, gives the surface the loop's genus.
+struct Tunnel {
+  Vec3 center = Vec3::Zero();   ///< the loop's centroid
+  Vec3 normal = Vec3::UnitZ();  ///< of the loop's best-fit plane
+  /// Directions of the head's and the tail's mouth: either side of the loop's plane, tilted away from
+  /// the mean centroid of the patch's loops by the loop's offset from it in loop radii, up to 27°, so
+  /// that the mouths of several loops in one patch fan out rather than push each other out without end.
+  std::array<Vec3, 2> out;
+  double radius = 0;  ///< the loop's mean radius
+  double hole() const { return 0.25 * radius; }
+  /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all.
+  double reach() const { return 4 * radius; }
+};
+
+/// A hull point of a patch that closes no opening, and the centerline point it stands for.
+struct RimPoint {
+  Vec3 at = Vec3::Zero(), axis = Vec3::Zero();
+  double radius = 0;
 };
 
 /// A joint patch: one joint, or several joints too close to part, and the branch ends that meet it.
 struct Patch {
   std::vector<int32_t> joints;  ///< joint points
   std::vector<int32_t> ends;    ///< indices into Tiler::ends_
+  /// Hull points that close no opening: around each tunnel, its loop's points at the height of the
+  /// tubes' corners on either side of the loop's plane, so that the hull covers the loop and surrounds
+  /// the hole even where no branch leaves the loop.
+  std::vector<RimPoint> rim;
 };
-
-/// The largest distance of a section's corners from its centre: radius_scale × r, pushed out by the
-/// lean against `axis` (see Tiler::add_section).
-double corner_reach(const Section& s, const Vec3& axis, double radius_scale) {
-  return radius_scale * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
-}
-
-/// Whether section a's corners, within `reach` of its centre, stay on a's side of section b's plane
-/// (b after a along the tube when `b_after`).
-bool clear_of(const Section& a, double reach, const Section& b, bool b_after) {
-  const double side = (b_after ? -1.0 : 1.0) * b.normal.dot(a.center - b.center);
-  return side > reach * a.normal.cross(b.normal).norm();
-}
-
-/// Moves the inner sections' centres so that the Loop limit surface passes through where they were.
-/// Along a tube whose sections each join their neighbours by two edges per corner, the limit of a
-/// section's corners moves with 2/3 of its own centre and 1/6 of each neighbour's: a bent centerline
-/// would be cut short by about a sixth of the turn, like a cubic B-spline's control polygon. Solving
-/// (c[i−1] + 4c[i] + c[i+1])/6 = p[i] (Jacobi sweeps, which halve the error each time) undoes that;
-/// end sections (joint squares, caps) stay put, and a ring wraps round. On a jagged centerline the
-/// solution swings from side to side: no centre moves by more than a fifth of its radius, and one
-/// whose move would fold the tube (its square crossing a neighbour's plane) stays where it was.
-void place_for_limit(std::vector<Section>& sections, const std::vector<Vec3>& axis, bool ring, double radius_scale) {
-  const std::size_t n = ring ? sections.size() - 1 : sections.size();
-  if (n < 3) return;
-  std::vector<Vec3> target(n), c(n), next(n);
-  for (std::size_t i = 0; i < n; ++i) target[i] = c[i] = sections[i].center;
-  const std::size_t first = ring ? 0 : 1, last = ring ? n : n - 1;
-  for (int sweep = 0; sweep < 40; ++sweep) {
-    next = c;
-    for (std::size_t i = first; i < last; ++i)
-      next[i] = 1.5 * target[i] - 0.25 * (c[(i + n - 1) % n] + c[(i + 1) % n]);
-    std::swap(c, next);
-  }
-  for (std::size_t i = first; i < last; ++i) {
-    const Vec3 move = c[i] - target[i];
-    const double most = 0.2 * sections[i].radius;
-    sections[i].center = target[i] + (move.norm() > most ? most / move.norm() : 1.0) * move;
-  }
-  for (std::size_t i = first; i < last; ++i) {
-    Section& s = sections[i];
-    const Section &before = sections[(i + n - 1) % n], &after = sections[(i + 1) % n];
-    const double reach = corner_reach(s, axis[i], radius_scale);
-    if (!clear_of(s, reach, before, false) || !clear_of(s, reach, after, true)) s.center = target[i];
-  }
-  if (ring) sections.back().center = sections.front().center;
-}
 
 class Tiler {
  public:
@@ -100,13 +82,16 @@ class Tiler {
     shared_at_.assign(g.branches.size(), 0.0);
     shared_up_.assign(g.branches.size(), Vec3::Zero());
     shared_vertex_.assign(g.branches.size(), -1);
+    tunnel_.resize(g.branches.size());
   }
 
   BaseMesh run() {
     find_patches();
     for (const Patch& p : patches_) build_patch(p);
-    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+    for (std::size_t b = 0; b < g_.branches.size(); ++b) {
       if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
+      if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
+    }
     drop_unused_vertices();
     return std::move(mesh_);
   }
@@ -117,9 +102,10 @@ class Tiler {
   UnionFind joints_;  // joints that share a patch
   std::vector<BranchCurve> curves_;
   std::vector<Kind> kind_;
-  std::vector<double> shared_at_;      // shared: arc position of the square from the branch's start
-  std::vector<Vec3> shared_up_;        // shared: its up-vector
+  std::vector<double> shared_at_;       // shared: arc position of the square from the branch's start
+  std::vector<Vec3> shared_up_;         // shared: its up-vector
   std::vector<int32_t> shared_vertex_;  // shared: first corner vertex, corners as seen from the start
+  std::vector<Tunnel> tunnel_;          // tunnel: its hole
   std::vector<End> ends_;
   std::vector<int32_t> head_, tail_;  // per branch: its end at its first / last point, or -1
   std::vector<Patch> patches_;
@@ -130,16 +116,36 @@ class Tiler {
   int32_t last_point(int32_t b) const { return g_.branches[b].points.back(); }
   double scale() const { return opt_.radius_scale; }
 
-  /// The square of `e` at arc distance t from its joint (up-vector still to be chosen).
+  /// The square of `e` at arc distance t from its joint (up-vector still to be chosen). A tunnel's
+  /// mouths sit at distance t from the loop's centroid, the head's on one side of the loop's plane, the
+  /// tail's on the other.
   Section square_at(const End& e, double t) const {
+    Section q;
+    if (kind_[e.branch] == Kind::tunnel) {
+      const Tunnel& h = tunnel_[e.branch];
+      q.normal = h.out[e.at_start ? 0 : 1];
+      q.center = h.center + t * q.normal;
+      q.radius = h.hole();
+      return q;
+    }
     const BranchCurve& c = curves_[e.branch];
     const double s = e.at_start ? t : c.length() - t;
-    Section q;
     q.center = c.position(s);
     q.radius = c.radius_at(s);
-    const Vec3 tangent = c.tangent(s);
-    q.normal = e.at_start ? tangent : -tangent;
+    const Vec3 chord = q.center - (e.at_start ? c.points.front() : c.points.back());
+    if (e.chord && chord.norm() > 0.1 * q.radius) {
+      q.normal = chord.normalized();
+    } else {
+      const Vec3 tangent = c.tangent(s);
+      q.normal = e.at_start ? tangent : -tangent;
+    }
     return q;
+  }
+
+  /// How far the square of `e` may move: to the far end of its branch; a tunnel's mouth, up to the
+  /// tunnel's reach from the loop's centroid.
+  double reach(const End& e) const {
+    return kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].reach() : curves_[e.branch].length();
   }
 
   /// Up-vectors for a patch's free squares: the projection of the patch's reference direction (the
@@ -148,7 +154,10 @@ class Tiler {
   /// coplanar.
   void orient_squares(const Patch& p, int attempt) {
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    for (int32_t i : p.ends) m += ends_[i].square.normal * ends_[i].square.normal.transpose();
+    // Tunnel mouths are left out: they face along their loop's normal, not along a branch.
+    for (int32_t i : p.ends)
+      if (kind_[ends_[i].branch] != Kind::tunnel)
+        m += ends_[i].square.normal * ends_[i].square.normal.transpose();
     const Vec3 ref = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvectors().col(0);
     for (std::size_t i = 0; i < p.ends.size(); ++i) {
       End& e = ends_[p.ends[i]];
@@ -169,23 +178,42 @@ class Tiler {
       if (&ends_[i] != &e)
         for (int k = 0; k < 4; ++k)
           reach = std::max(reach, e.square.normal.dot(ends_[i].square.corner(k, scale()) - e.square.center));
+    for (const RimPoint& r : p.rim) reach = std::max(reach, e.square.normal.dot(r.at - e.square.center));
     return reach + margin;
   }
 
   /// Pushes each free square along its branch until it is a face of the patch's hull. Stub and shared
-  /// squares stay put; a square that reaches the far end of its branch is marked stuck.
+  /// squares stay put; a square that reaches the far end of its branch is marked stuck. A square that
+  /// the turn of its branch's tangent pushes to the far end is tried again facing along its chord: on
+  /// a short or sharply bent branch the tangent there can point back across the patch, so that the
+  /// squares keep pushing each other along, where the chord points away from the joint.
   void place_squares(const Patch& p, int attempt) {
+    for (int32_t i : p.ends) ends_[i].chord = false;
+    for (;;) {
+      push_squares(p, attempt);
+      bool again = false;
+      for (int32_t i : p.ends) {
+        End& e = ends_[i];
+        if (e.stuck && !e.chord && kind_[e.branch] != Kind::tunnel) e.chord = again = true;
+      }
+      if (!again) return;
+    }
+  }
+
+  void push_squares(const Patch& p, int attempt) {
     for (int32_t i : p.ends) {
       End& e = ends_[i];
       const BranchCurve& c = curves_[e.branch];
       e.stuck = false;
-      e.fixed = kind_[e.branch] != Kind::tube;
+      e.fixed = kind_[e.branch] == Kind::stub || kind_[e.branch] == Kind::shared;
       if (kind_[e.branch] == Kind::stub) {
         e.t = c.length();
       } else if (kind_[e.branch] == Kind::shared) {
         e.t = e.at_start ? shared_at_[e.branch] : c.length() - shared_at_[e.branch];
       } else {
-        e.t = std::min(c.length(), 0.25 * c.radius_at(e.at_start ? 0 : c.length()) * (1 + attempt));
+        const double r = kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].hole()
+                                                         : c.radius_at(e.at_start ? 0 : c.length());
+        e.t = std::min(reach(e), 0.25 * r * (1 + attempt));
       }
       e.square = square_at(e, e.t);
       if (kind_[e.branch] == Kind::shared) e.square.up = shared_up_[e.branch];
@@ -199,7 +227,7 @@ class Tiler {
         const double overlap = intrusion(e, p);
         if (overlap <= 0) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
-        const double length = curves_[e.branch].length();
+        const double length = reach(e);
         e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
@@ -241,16 +269,39 @@ class Tiler {
   }
 
   /// Groups joints into patches and decides each branch's kind. A branch between two joints too short
-  /// for a tube first tries one shared square; failing that, its joints merge into one patch. A branch
-  /// from a joint to a terminal too short for a tube becomes a stub. Repeated until nothing changes.
+  /// for a tube first tries one shared square; failing that, its joints merge into one patch, or, when
+  /// they share one already, it becomes a tunnel. A branch from a joint to a terminal too short for a
+  /// tube becomes a stub. Repeated until nothing changes.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
       for (const Patch& p : patches_) place_squares(p, 0);
+      // A tunnel whose mouths cannot clear the patch, or come close to another tunnel's (two loops of
+      // nearly the same centre), gives its loop up; the patch is placed again without it before anything
+      // else is decided, as its mouths may have pushed the other squares.
       bool changed = false;
+      for (const Patch& p : patches_) {
+        std::vector<int32_t> kept;
+        for (int32_t i : p.ends) {
+          const int32_t b = ends_[i].branch;
+          if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
+          const bool clash =
+              std::any_of(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
+          if (!clash && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
+            kept.push_back(b);
+            continue;
+          }
+          kind_[b] = Kind::swallowed;
+          --mesh_.tunnels;
+          changed = true;
+        }
+      }
+      if (changed) continue;
       for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
         const int32_t b = static_cast<int32_t>(bi);
-        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || (head_[b] < 0 && tail_[b] < 0)) continue;
+        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
+            (head_[b] < 0 && tail_[b] < 0))
+          continue;
         const bool both = head_[b] >= 0 && tail_[b] >= 0;
         if (kind_[b] == Kind::shared) {
           const Patch& hp = patches_[patch_of_end_[head_[b]]];
@@ -267,6 +318,12 @@ class Tiler {
         if (!both) {
           kind_[b] = Kind::stub;
           ++mesh_.absorbed_branches;
+        } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
+          // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
+          // a forest, and the branch that would close the loop makes the hole a tunnel instead.
+          kind_[b] = Kind::tunnel;
+          ++mesh_.absorbed_branches;
+          ++mesh_.tunnels;
         } else if (kind_[b] == Kind::tube && best_shared_square(b) > 0) {
           kind_[b] = Kind::shared;
           shared_up_[b] = any_perpendicular(curves_[b].tangent(shared_at_[b]));
@@ -281,6 +338,17 @@ class Tiler {
   }
 
   std::vector<int32_t> patch_of_end_;
+
+  /// Whether a mouth of tunnel a comes within twice the corners' reach of a mouth of tunnel b, so that
+  /// the hull would leave no wall between the two holes.
+  bool mouths_meet(int32_t a, int32_t b) const {
+    for (int32_t i : {head_[a], tail_[a]})
+      for (int32_t j : {head_[b], tail_[b]}) {
+        const Section &p = ends_[i].square, &q = ends_[j].square;
+        if ((p.center - q.center).norm() < 2 * scale() * (p.radius + q.radius)) return true;
+      }
+    return false;
+  }
 
   void collect_patches() {
     ends_.clear();
@@ -310,6 +378,80 @@ class Tiler {
         patches_[patch].ends.push_back(static_cast<int32_t>(ends_.size()));
         patch_of_end_.push_back(patch);
         ends_.push_back(e);
+      }
+    }
+    find_tunnel_holes();
+  }
+
+  /// Each tunnel's hole from its loop: the tunnel's branch and the path of swallowed branches (a tree
+  /// in each patch) between its joints. Centroid and plane are those of the loop's edges, weighted by length.
+  void find_tunnel_holes() {
+    std::map<int32_t, std::vector<int32_t>> swallowed_at;  // joint → swallowed branches that meet it
+    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+      if (kind_[b] == Kind::swallowed)
+        for (int32_t v : {first_point(b), last_point(b)}) swallowed_at[v].push_back(static_cast<int32_t>(b));
+    for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+      if (kind_[bi] != Kind::tunnel) continue;
+      const int32_t b = static_cast<int32_t>(bi);
+      // Breadth-first from the branch's last point through the tree to its first.
+      std::map<int32_t, int32_t> reached_by{{last_point(b), -1}};
+      std::vector<int32_t> queue{last_point(b)};
+      for (std::size_t q = 0; q < queue.size() && !reached_by.count(first_point(b)); ++q)
+        for (int32_t s : swallowed_at[queue[q]]) {
+          const int32_t next = first_point(s) == queue[q] ? last_point(s) : first_point(s);
+          if (reached_by.emplace(next, s).second) queue.push_back(next);
+        }
+      std::vector<int32_t> loop{b};
+      for (int32_t v = first_point(b); reached_by.at(v) >= 0;) {
+        const int32_t s = reached_by.at(v);
+        loop.push_back(s);
+        v = first_point(s) == v ? last_point(s) : first_point(s);
+      }
+      double length = 0, radius = 0;
+      Vec3 center = Vec3::Zero();
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i + 1 < curves_[s].points.size(); ++i) {
+          const double l = curves_[s].arc[i + 1] - curves_[s].arc[i];
+          length += l;
+          center += l * 0.5 * (curves_[s].points[i] + curves_[s].points[i + 1]);
+          radius += l * 0.5 * (curves_[s].radius[i] + curves_[s].radius[i + 1]);
+        }
+      center /= length;
+      Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i + 1 < curves_[s].points.size(); ++i) {
+          const double l = curves_[s].arc[i + 1] - curves_[s].arc[i];
+          const Vec3 d = 0.5 * (curves_[s].points[i] + curves_[s].points[i + 1]) - center;
+          spread += l * d * d.transpose();
+        }
+      Tunnel& h = tunnel_[b];
+      h.center = center;
+      h.radius = radius / length;
+      h.normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
+      Patch& p = patches_[patch_of_end_[head_[b]]];
+      for (int32_t s : loop)
+        for (std::size_t i = 0; i < curves_[s].points.size(); ++i)
+          for (double side : {1.0, -1.0}) {
+            RimPoint r;
+            r.axis = curves_[s].points[i];
+            r.radius = curves_[s].radius[i];
+            r.at = r.axis + side * scale() * r.radius * h.normal;
+            p.rim.push_back(r);
+          }
+    }
+    for (const Patch& p : patches_) {
+      std::vector<int32_t> tunnels;
+      Vec3 mean = Vec3::Zero();
+      for (int32_t i : p.ends)
+        if (kind_[ends_[i].branch] == Kind::tunnel && ends_[i].at_start)
+          tunnels.push_back(ends_[i].branch), mean += tunnel_[ends_[i].branch].center;
+      mean /= std::max<double>(1, static_cast<double>(tunnels.size()));
+      for (int32_t b : tunnels) {
+        Tunnel& h = tunnel_[b];
+        Vec3 tilt = (h.center - mean) / h.radius;
+        tilt -= tilt.dot(h.normal) * h.normal;
+        if (tilt.norm() > 0.5) tilt *= 0.5 / tilt.norm();
+        h.out = {(h.normal + tilt).normalized(), (tilt - h.normal).normalized()};
       }
     }
   }
@@ -350,15 +492,38 @@ class Tiler {
     return {first, first + 3, first + 2, first + 1};
   }
 
+  /// Closes the patch. Where its hull cannot close around a tunnel, the tunnel's loop is given up (its
+  /// branch is swallowed) and the patch tried again without it.
+  void build_patch(Patch p) {
+    while (!close_patch(p)) {
+      const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
+                                       [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
+      if (tunnel == p.ends.end()) {
+        const Vec3& at = g_.points[p.joints[0]];
+        throw std::runtime_error("could not close the surface around the joint at (" +
+                                 std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
+                                 std::to_string(at.z()) + ")");
+      }
+      const int32_t b = ends_[*tunnel].branch;
+      kind_[b] = Kind::swallowed;
+      --mesh_.tunnels;
+      p.ends.erase(
+          std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
+          p.ends.end());
+    }
+  }
+
   /// The convex hull of the patch's squares with the tubes' and shared squares cut out. When exact
   /// coplanarity spoils the hull (the check below is exact), retried with other square turns and the
-  /// free squares pushed further out.
-  void build_patch(const Patch& p) {
+  /// free squares pushed further out. False when no attempt closes it.
+  bool close_patch(const Patch& p) {
+    const int32_t squares = static_cast<int32_t>(p.ends.size());
     for (int attempt = 0; attempt < 8; ++attempt) {
       if (attempt > 0) place_squares(p, attempt);
       std::vector<Vec3> corners;
       for (int32_t i : p.ends)
         for (int k = 0; k < 4; ++k) corners.push_back(ends_[i].square.corner(k, scale()));
+      for (const RimPoint& r : p.rim) corners.push_back(r.at);
       // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
       // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar
       // square would otherwise come back with both diagonals).
@@ -366,7 +531,7 @@ class Tiler {
       std::vector<int> stub_side(p.ends.size(), 0);  // +1: the stub square faces outwards, −1: inwards
       for (const Tri& t : convex_hull(corners)) {
         const int32_t square = t[0] / 4;
-        if (t[1] / 4 != square || t[2] / 4 != square) {
+        if (square >= squares || t[1] / 4 != square || t[2] / 4 != square) {
           patch.push_back(t);
           continue;
         }
@@ -375,7 +540,8 @@ class Tiler {
       }
       for (std::size_t s = 0; s < p.ends.size(); ++s) {
         // With open caps a stub's terminal square on the hull stays open, like any other terminal.
-        if (kind_[ends_[p.ends[s]].branch] != Kind::stub || stub_side[s] == 0 || opt_.caps == Caps::open) continue;
+        if (kind_[ends_[p.ends[s]].branch] != Kind::stub || stub_side[s] == 0 || opt_.caps == Caps::open)
+          continue;
         const int32_t q = static_cast<int32_t>(4 * s);
         if (stub_side[s] > 0)
           patch.insert(patch.end(), {Tri{q, q + 1, q + 2}, Tri{q, q + 2, q + 3}});
@@ -389,13 +555,17 @@ class Tiler {
         ends_[i].first_vertex = v[0];
         id.insert(id.end(), v.begin(), v.end());
       }
+      for (const RimPoint& r : p.rim) {
+        id.push_back(static_cast<int32_t>(mesh_.vertices.size()));
+        mesh_.vertices.push_back(r.at);
+        mesh_.axis.push_back(r.axis);
+        mesh_.axis_radius.push_back(r.radius);
+      }
       for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
       ++mesh_.joints;
-      return;
+      return true;
     }
-    const Vec3& at = g_.points[p.joints[0]];
-    throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
-                             ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+    return false;
   }
 
   /// The patch must use each opening's edges once, against the square's direction (the tube or the
@@ -417,8 +587,79 @@ class Tiler {
       if (count == 0) continue;
       const auto it = directed.find({edge.second, edge.first});
       if (count != 1 || it == directed.end() || it->second != 1) return false;
+      // An edge from one mouth of a tunnel to the other would leave the hole no wall on that side (and
+      // the tunnel's own quads may use it).
+      const std::size_t s = edge.first / 4, t = edge.second / 4;
+      if (s != t && s < p.ends.size() && t < p.ends.size() &&
+          ends_[p.ends[s]].branch == ends_[p.ends[t]].branch &&
+          kind_[ends_[p.ends[s]].branch] == Kind::tunnel)
+        return false;
     }
     return true;
+  }
+
+  /// Whether the squares of consecutive sections a and b (normals along the travel, corners within
+  /// reach_a and reach_b of their centres) reach across each other's planes: b's behind a's, or a's
+  /// ahead of b's.
+  static bool crosses(const Section& a, double reach_a, const Section& b, double reach_b) {
+    const double sine = std::sqrt(std::max(0.0, 1 - std::pow(a.normal.dot(b.normal), 2)));
+    return a.normal.dot(b.center - a.center) < reach_b * sine || b.normal.dot(b.center - a.center) < reach_a * sine;
+  }
+  bool crosses(const Section& a, const Section& b) const {
+    return crosses(a, scale() * a.radius, b, scale() * b.radius);
+  }
+
+  /// The largest distance of a section's corners from its centre: scale() × r, pushed out by the lean
+  /// against `axis` (see add_section).
+  double reach(const Section& s, const Vec3& axis) const {
+    return scale() * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
+  }
+
+  /// Moves the inner sections' centres so that the Loop limit surface passes through where they were.
+  /// Along a tube whose sections each join their neighbours by two edges per corner, the limit of a
+  /// section's corners moves with 2/3 of its own centre and 1/6 of each neighbour's: a bent centerline
+  /// would be cut short by about a sixth of the turn, like a cubic B-spline's control polygon. Solving
+  /// (c[i−1] + 4c[i] + c[i+1])/6 = p[i] (Jacobi sweeps, which halve the error each time) undoes that;
+  /// end sections (joint squares, caps) stay put, and a ring wraps round. On a jagged centerline the
+  /// solution swings from side to side: no centre moves by more than a fifth of its radius, and one
+  /// whose move would fold the tube (its square crossing a neighbour's plane) stays where it was.
+  void place_for_limit(std::vector<Section>& sections, const std::vector<Vec3>& axis, bool ring) const {
+    const std::size_t n = ring ? sections.size() - 1 : sections.size();
+    if (n < 3) return;
+    std::vector<Vec3> target(n), c(n), next(n);
+    for (std::size_t i = 0; i < n; ++i) target[i] = c[i] = sections[i].center;
+    const std::size_t first = ring ? 0 : 1, last = ring ? n : n - 1;
+    for (int sweep = 0; sweep < 40; ++sweep) {
+      next = c;
+      for (std::size_t i = first; i < last; ++i)
+        next[i] = 1.5 * target[i] - 0.25 * (c[(i + n - 1) % n] + c[(i + 1) % n]);
+      std::swap(c, next);
+    }
+    for (std::size_t i = first; i < last; ++i) {
+      const Vec3 move = c[i] - target[i];
+      const double most = 0.2 * sections[i].radius;
+      sections[i].center = target[i] + (move.norm() > most ? most / move.norm() : 1.0) * move;
+    }
+    for (std::size_t i = first; i < last; ++i) {
+      const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+      const double here = reach(sections[i], axis[i]);
+      if (crosses(sections[before], reach(sections[before], axis[before]), sections[i], here) ||
+          crosses(sections[i], here, sections[after], reach(sections[after], axis[after])))
+        sections[i].center = target[i];
+    }
+    if (ring) sections.back().center = sections.front().center;
+  }
+
+  /// Drops the inner sections whose squares cross the plane of the section kept before them, or of the
+  /// last: the tube would fold there (a bend tighter than the corners' radius, or a joint square
+  /// facing along its chord while the branch turns). The end sections stay.
+  void drop_folds(std::vector<Section>& sections) const {
+    std::vector<Section> kept{sections.front()};
+    for (std::size_t i = 1; i + 1 < sections.size(); ++i)
+      if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
+    while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
+    kept.push_back(sections.back());
+    sections = std::move(kept);
   }
 
   void build_tube(int32_t b) {
@@ -430,21 +671,22 @@ class Tiler {
     std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
     if (ring && arcs.size() < 4) arcs = {0.0, c.length() / 3, 2 * c.length() / 3, c.length()};
 
-    const std::size_t m = arcs.size() - 1;
-    std::vector<Section> sections(m + 1);
-    for (std::size_t i = 0; i <= m; ++i) {
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
       sections[i].center = c.position(arcs[i]);
       sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
     }
     if (ring) sections.back().center = sections.front().center;
+    if (head) sections.front().normal = head->square.normal;
+    if (tail) sections.back().normal = -tail->square.normal;
+    if (!ring) drop_folds(sections);
+    const std::size_t m = sections.size() - 1;
     // Where the tube really runs at each section: along the polyline through the centres.
     std::vector<Vec3> axis(m + 1);
     for (std::size_t i = 0; i <= m; ++i)
       axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
-    for (std::size_t i = 0; i <= m; ++i) sections[i].normal = c.tangent(arcs[i]);
-    if (head) sections.front().normal = head->square.normal;
-    if (tail) sections.back().normal = -tail->square.normal;
-    place_for_limit(sections, axis, ring, scale());
+    place_for_limit(sections, axis, ring);
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
@@ -472,6 +714,25 @@ class Tiler {
       if (!head) mesh_.quads.push_back({ids[0][3], ids[0][2], ids[0][1], ids[0][0]});
       if (!tail) mesh_.quads.push_back({ids[m][0], ids[m][1], ids[m][2], ids[m][3]});
     }
+  }
+
+  /// The tunnel's hole: four quads straight through the patch from its head mouth to its tail mouth,
+  /// facing the hole's axis. Seen along the head's normal, the tail's corners run clockwise, so head
+  /// corner j pairs with tail corner (k − j) mod 4, for the quarter turn k that pairs them closest.
+  void build_tunnel(int32_t b) {
+    const int32_t head = ends_[head_[b]].first_vertex, tail = ends_[tail_[b]].first_vertex;
+    auto paired = [](int k, int j) { return ((k - j) % 4 + 4) % 4; };
+    int best = 0;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 4; ++k) {
+      double distance = 0;
+      for (int j = 0; j < 4; ++j)
+        distance += (mesh_.vertices[head + j] - mesh_.vertices[tail + paired(k, j)]).squaredNorm();
+      if (distance < best_distance) best_distance = distance, best = k;
+    }
+    for (int j = 0; j < 4; ++j)
+      mesh_.quads.push_back(
+          {head + j, head + (j + 1) % 4, tail + paired(best, j + 1), tail + paired(best, j)});
   }
 
   /// Stub squares that ended up inside a patch's hull are not used by any face.

@@ -3,7 +3,9 @@
 // terminals and by a convex-hull patch around every joint. Each step is a gluing that keeps the
 // surface a closed 2-manifold (a hull is a sphere; removing its square faces leaves one hole per tube;
 // a tube is an annulus glued to two square loops; a cap is a disc), so the result has one component
-// per centerline component and genus equal to the number of independent loops.
+// per centerline component and genus equal to the number of independent loops. A loop too short to
+// part closes inside one patch as a tunnel: an annulus from one square hole of the hull to another,
+// straight through the patch.
 
 #include <array>
 #include <cstdint>
@@ -34,6 +36,7 @@ struct BaseMesh {
   int64_t sections = 0;                       ///< cross-sections, joint squares included
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
+  int64_t tunnels = 0;                        ///< of those, loops closed inside a patch, through it
 };
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options);
