@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <set>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -42,7 +42,8 @@ void expect_edges_of(const std::vector<Tri>& faces, int32_t vertex_count) {
 TEST(MeshEdges, ATorusHasThreeEdgesPerTwoFacesEachJoiningItsCorners) {
   const TriMesh t = torus(24, 12, 3.0, 1.0);
   expect_edges_of(t.faces, static_cast<int32_t>(t.vertices.size()));
-  EXPECT_EQ(2 * mesh_edges(t.faces, static_cast<int32_t>(t.vertices.size())).edges.size(), 3 * t.faces.size());
+  EXPECT_EQ(2 * mesh_edges(t.faces, static_cast<int32_t>(t.vertices.size())).edges.size(),
+            3 * t.faces.size());
 }
 
 TEST(MeshEdges, BoundaryAndNonManifoldEdgesAreListedOnce) {

@@ -1,4 +1,6 @@
 """Colour maps for per-vertex curvature, and the value ranges they span."""
+import functools
+
 import numpy as np
 
 # Stops in sRGB, evenly spaced over [0, 1], linearly interpolated between.
@@ -44,12 +46,25 @@ def _stops(name):
     return np.array([[int(h[i:i + 2], 16) / 255.0 for i in (0, 2, 4)] for h in COLORMAPS[name]])
 
 
-def map_colors(values, lo, hi, name):
-    """(V,4) float32 scene-linear RGBA of each value on map `name` over [lo, hi] (clamped at the ends)."""
+# Each map is tabulated at this many steps of its range (finer than 8-bit colour), so that mapping a
+# million values is one lookup each rather than an interpolation and a power.
+STEPS = 1024
+
+
+@functools.lru_cache(maxsize=None)
+def _table(name):
+    """(STEPS + 1, 4) float32 scene-linear RGBA at 0, 1/STEPS, ..., 1 along map `name`."""
     stops = _stops(name)
-    t = np.clip((np.asarray(values, dtype=np.float64) - lo) / (hi - lo), 0.0, 1.0)
-    positions = np.linspace(0.0, 1.0, len(stops))
-    rgba = np.ones((len(t), 4), dtype=np.float32)
+    t = np.linspace(0.0, 1.0, STEPS + 1)
+    table = np.ones((STEPS + 1, 4), dtype=np.float32)
     for channel in range(3):
-        rgba[:, channel] = srgb_to_linear(np.interp(t, positions, stops[:, channel]))
-    return rgba
+        table[:, channel] = srgb_to_linear(np.interp(t, np.linspace(0.0, 1.0, len(stops)), stops[:, channel]))
+    table.flags.writeable = False
+    return table
+
+
+def map_colors(values, lo, hi, name):
+    """(V,4) float32 scene-linear RGBA of each value on map `name` over [lo, hi] (clamped at the ends),
+    to the nearest of STEPS steps."""
+    t = np.clip((np.asarray(values, dtype=np.float64) - lo) / (hi - lo), 0.0, 1.0)
+    return _table(name)[np.rint(t * STEPS).astype(np.intp)]

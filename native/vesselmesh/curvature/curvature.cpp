@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "vesselmesh/parallel.hpp"
+
 namespace vesselmesh {
 namespace {
 
@@ -161,66 +163,71 @@ VertexCurvature estimate_curvature(const TriMesh& mesh) {
   out.dir1.assign(nv, Vec3::Zero());
   out.dir2.assign(nv, Vec3::Zero());
 
-  std::vector<int32_t> mark(nv, -1);  // mark[q] == v: q is already in v's ring (or is v)
-  std::vector<int32_t> ring;
-  std::vector<Vec3> points;
-  for (size_t vi = 0; vi < nv; ++vi) {
-    const auto v = static_cast<int32_t>(vi);
-    const Vec3& n = normals[v];
-    if (n.isZero()) continue;
-    // The fit is invariant under rotations about n (its monomials span a rotation-invariant space), so any
-    // tangent basis will do.
-    const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
-    out.dir1[v] = e1;
-    out.dir2[v] = e2;
+  // Each vertex's fit is its own: the vertices are shared out between threads, each with its own marks.
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    std::vector<int32_t> mark(nv, -1);  // mark[q] == v: q is already in v's ring (or is v)
+    std::vector<int32_t> ring;
+    std::vector<Vec3> points;
+    for (size_t vi = begin; vi < end; ++vi) {
+      const auto v = static_cast<int32_t>(vi);
+      const Vec3& n = normals[v];
+      if (n.isZero()) continue;
+      // The fit is invariant under rotations about n (its monomials span a rotation-invariant space), so any
+      // tangent basis will do.
+      const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+      out.dir1[v] = e1;
+      out.dir2[v] = e2;
 
-    const Vec3& p = mesh.vertices[v];
-    ring.clear();
-    mark[v] = v;
-    double length = 0;
-    for (const int32_t* q = neighbours.begin(v); q != neighbours.end(v); ++q) {
-      mark[*q] = v;
-      ring.push_back(*q);
-      length += (mesh.vertices[*q] - p).norm();
-    }
-    length /= static_cast<double>(ring.size());
-    if (!(length > 0)) continue;
-    // Adds the neighbours of ring[from, to): ring k + 1 from ring k and the vertices ring k added.
-    const auto grow = [&](size_t from, size_t to) {
-      for (size_t i = from; i < to; ++i)
-        for (const int32_t* q = neighbours.begin(ring[i]); q != neighbours.end(ring[i]); ++q)
-          if (mark[*q] != v) {
-            mark[*q] = v;
-            ring.push_back(*q);
-          }
-    };
-    // Appends the local coordinates of the facing vertices in ring[from, end).
-    const auto collect = [&](size_t from) {
-      for (size_t i = from; i < ring.size(); ++i) {
-        const int32_t q = ring[i];
-        if (normals[q].dot(n) <= kFacingMargin) continue;
-        const Vec3 d = (mesh.vertices[q] - p) / length;
-        points.emplace_back(d.dot(e1), d.dot(e2), d.dot(n));
+      const Vec3& p = mesh.vertices[v];
+      ring.clear();
+      mark[v] = v;
+      double length = 0;
+      for (const int32_t* q = neighbours.begin(v); q != neighbours.end(v); ++q) {
+        mark[*q] = v;
+        ring.push_back(*q);
+        length += (mesh.vertices[*q] - p).norm();
       }
-    };
-    const size_t one_ring = ring.size();
-    grow(0, one_ring);
-    const size_t two_ring = ring.size();
-    points.clear();
-    collect(0);
-    if (points.size() < 6) {
-      grow(one_ring, two_ring);
-      collect(two_ring);
+      length /= static_cast<double>(ring.size());
+      if (!(length > 0)) continue;
+      // Adds the neighbours of ring[from, to): ring k + 1 from ring k and the vertices ring k added.
+      const auto grow = [&](size_t from, size_t to) {
+        for (size_t i = from; i < to; ++i)
+          for (const int32_t* q = neighbours.begin(ring[i]); q != neighbours.end(ring[i]); ++q)
+            if (mark[*q] != v) {
+              mark[*q] = v;
+              ring.push_back(*q);
+            }
+      };
+      // Appends the local coordinates of the facing vertices in ring[from, end).
+      const auto collect = [&](size_t from) {
+        for (size_t i = from; i < ring.size(); ++i) {
+          const int32_t q = ring[i];
+          if (normals[q].dot(n) <= kFacingMargin) continue;
+          const Vec3 d = (mesh.vertices[q] - p) / length;
+          points.emplace_back(d.dot(e1), d.dot(e2), d.dot(n));
+        }
+      };
+      const size_t one_ring = ring.size();
+      grow(0, one_ring);
+      const size_t two_ring = ring.size();
+      points.clear();
+      collect(0);
+      if (points.size() < 6) {
+        grow(one_ring, two_ring);
+        collect(two_ring);
+      }
+      if (const std::optional<HeightFit> fit = fit_height(points)) store(*fit, e1, e2, n, length, vi, out);
     }
-    if (const std::optional<HeightFit> fit = fit_height(points)) store(*fit, e1, e2, n, length, vi, out);
-  }
+  });
   return out;
 }
 
 std::vector<VertexProperty> curvature_properties(const VertexCurvature& curvature) {
-  const std::pair<const char*, const std::vector<double>*> measures[] = {
-      {"k1", &curvature.k1}, {"k2", &curvature.k2}, {"mean", &curvature.mean},
-      {"gaussian", &curvature.gaussian}, {"rms", &curvature.rms}};
+  const std::pair<const char*, const std::vector<double>*> measures[] = {{"k1", &curvature.k1},
+                                                                         {"k2", &curvature.k2},
+                                                                         {"mean", &curvature.mean},
+                                                                         {"gaussian", &curvature.gaussian},
+                                                                         {"rms", &curvature.rms}};
   std::vector<VertexProperty> properties;
   for (const auto& [name, values] : measures)
     properties.push_back({name, std::vector<float>(values->begin(), values->end())});
