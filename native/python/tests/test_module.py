@@ -192,3 +192,16 @@ def test_edges_join_each_corner_to_the_next_and_count_as_a_closed_surface_needs(
                                                                  np.maximum(faces, following)], axis=-1))
     with pytest.raises(ValueError, match="face 0"):
         vm.edges(np.array([[0, 1, 5]], dtype=np.int32), 3)
+
+
+def test_surface_functions_take_faces_of_any_integer_type_and_name_bad_ones(project_data):
+    surface = vm.mesh(vm.Graph.read(str(project_data / "bifurcation.swc")), levels=1)
+    vertices, faces = surface["vertices"], surface["faces"]
+    expected = vm.curvature(vertices, faces)
+    for same in (faces.astype(np.int64), faces.astype(np.uint16), faces.tolist()):
+        again = vm.curvature(vertices, same)
+        assert all(np.array_equal(again[name], expected[name]) for name in expected)
+    with pytest.raises(vm.InputError, match="integer vertex indices"):
+        vm.curvature(vertices, [["a", "b", "c"]])
+    with pytest.raises(vm.InputError, match="shape"):
+        vm.check(vertices, faces[:, :2])
