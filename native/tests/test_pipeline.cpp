@@ -245,15 +245,31 @@ TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedSurfaceAbsorbing, testing::ValuesIn(kAbsorbingCases), case_name);
 
-// Not met yet (level 2 figures of mesh_at): brava-bg0003 2.9 % median, 17 % 95th percentile (sharp
-// corners of a sparse tracing); human-brain-arteries 1.3 % and 8.8 % (its errors sit at the convex
-// joint patches' crotches).
-TEST(SharedFidelity, DISABLED_LevelTwoIsWithinTwoPercentMedianAndEightPercentP95) {
-  for (const char* file : {"brava-bg0003/BG0003_ColorCoded.CNG.swc", "human-brain-arteries/arteries_smooth.vtk"}) {
-    SHARED_DATA_OR_SKIP(path, file);
-    const CenterlineGraph g = build_graph(read_centerline(path));
-    const FidelityReport f = radius_fidelity(mesh_at(g, 2).mesh, g);
-    EXPECT_LE(f.abs_relative_error.median, 0.02) << file;
-    EXPECT_LE(f.abs_relative_error.p95, 0.08) << file;
-  }
+namespace {
+
+/// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
+FidelityReport uniform_level_two_fidelity(const std::string& path) {
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  MeshOptions o;
+  o.subdivision.levels = 2;
+  o.subdivision.method = Refinement::uniform;
+  return radius_fidelity(mesh_centerline(g, o).mesh, g);
+}
+
+}  // namespace
+
+TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEightPercentP95) {
+  SHARED_DATA_OR_SKIP(path, "human-brain-arteries/arteries_smooth.vtk");
+  const FidelityReport f = uniform_level_two_fidelity(path);
+  EXPECT_LE(f.abs_relative_error.median, 0.02);  // 0.011 measured
+  EXPECT_LE(f.abs_relative_error.p95, 0.08);     // 0.052 measured
+}
+
+// Not met yet: 2.0 % median, 14 % 95th percentile, at the 50° to 90° corners of a tracing whose points
+// are 4.4 radii apart (docs/pipeline.md, "Where it stands").
+TEST(SharedFidelity, DISABLED_BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95) {
+  SHARED_DATA_OR_SKIP(path, "brava-bg0003/BG0003_ColorCoded.CNG.swc");
+  const FidelityReport f = uniform_level_two_fidelity(path);
+  EXPECT_LE(f.abs_relative_error.median, 0.02);
+  EXPECT_LE(f.abs_relative_error.p95, 0.08);
 }
