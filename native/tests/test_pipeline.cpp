@@ -8,6 +8,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/synth/synth.hpp"
 
 using namespace vesselmesh;
 
@@ -40,8 +41,8 @@ TEST_P(JointKind, SurfaceIsClosedManifoldWithTheRightGenusAtEveryLevel) {
     const CenterlineGraph g = build_graph(GetParam().make(scale));
     ASSERT_EQ(g.loops, GetParam().loops);
     for (int levels : {0, 1, 2}) {
-      const std::string what = GetParam().name + " scale " + std::to_string(scale) + " level " +
-                               std::to_string(levels);
+      const std::string what =
+          GetParam().name + " scale " + std::to_string(scale) + " level " + std::to_string(levels);
       expect_closed_surface(mesh_at(g, levels).mesh, g, what);
     }
   }
@@ -73,7 +74,8 @@ INSTANTIATE_TEST_SUITE_P(Fixtures, JointKind, testing::ValuesIn(fixtures::joint_
 
 TEST(Pipeline, LoopsTooShortToPartKeepTheirHoleAsATunnel) {
   // The joints of these loops merge into one patch; the loop's genus comes from a tunnel through it.
-  for (const auto& [name, make] : {std::pair{"lens", fixtures::lens}, std::pair{"short_loop", fixtures::short_loop}}) {
+  for (const auto& [name, make] :
+       {std::pair{"lens", fixtures::lens}, std::pair{"short_loop", fixtures::short_loop}}) {
     const MeshResult r = mesh_at(build_graph(make(1.0)), 0);
     EXPECT_EQ(r.joint_patches, 1) << name;
     EXPECT_EQ(r.tunnels, 1) << name;
@@ -109,8 +111,23 @@ TEST(Pipeline, CoarseZigzagKeepsItsRadius) {
     const CenterlineGraph g = build_graph(fixtures::zigzag(30, 4, scale));
     const FidelityReport f = radius_fidelity(mesh_at(g, 2).mesh, g);
     EXPECT_LT(f.abs_relative_error.median, 0.025) << "scale " << scale;  // 0.039 without the compensation
-    EXPECT_LT(f.abs_relative_error.p95, 0.08) << "scale " << scale;     // 0.156 without
+    EXPECT_LT(f.abs_relative_error.p95, 0.08) << "scale " << scale;      // 0.156 without
   }
+}
+
+TEST(Pipeline, SynthesizedNetworksOfSeveralSizesAreClosedUncrossedAndHaveTheirGenus) {
+  // The generator keeps non-adjacent tubes apart, so no pair of triangles may cross, loops or not.
+  for (int64_t sections : {500, 2000, 6000})
+    for (int loops : {0, 2}) {
+      const CenterlineGraph g = build_graph(synthesize_network({sections, loops, 7}));
+      for (int levels : {0, 1, 2}) {
+        const std::string what = std::to_string(sections) + " sections, " + std::to_string(loops) +
+                                 " loops, level " + std::to_string(levels);
+        const TriMesh mesh = mesh_at(g, levels).mesh;
+        expect_closed_surface(mesh, g, what);
+        EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0) << what;
+      }
+    }
 }
 
 TEST(Pipeline, SeveralComponentsGiveOneSurfaceEach) {
@@ -131,7 +148,7 @@ TEST(Pipeline, StatsCountEveryStage) {
   o.subdivision.method = Refinement::uniform;
   o.curvature = true;
   const MeshResult r = mesh_centerline(g, o);
-  ASSERT_EQ(r.stages.size(), 4u);  // tile, triangulate, subdivide, curvature
+  ASSERT_EQ(r.stages.size(), 4u);                        // tile, triangulate, subdivide, curvature
   EXPECT_EQ(r.stages[1].faces * 16, r.stages[2].faces);  // two uniform levels
   EXPECT_EQ(r.stages.back().faces, static_cast<int64_t>(r.mesh.faces.size()));
   EXPECT_EQ(r.tagged, std::vector<double>({1.0, 1.0}));
@@ -150,7 +167,8 @@ class SharedSurface : public testing::TestWithParam<SharedCase> {};
 TEST_P(SharedSurface, BaseAndSubdividedSurfacesAreClosedWithTheRightGenus) {
   SHARED_DATA_OR_SKIP(path, GetParam().file);
   const CenterlineGraph g = build_graph(read_centerline(path));
-  for (int levels : {0, 1, 2}) expect_closed_surface(mesh_at(g, levels).mesh, g, path + " level " + std::to_string(levels));
+  for (int levels : {0, 1, 2})
+    expect_closed_surface(mesh_at(g, levels).mesh, g, path + " level " + std::to_string(levels));
 }
 
 const SharedCase kSharedCases[] = {
@@ -201,7 +219,8 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedUntangled,
                          testing::Values(SharedCase{"human-brain-arteries/arteries_smooth.vtk", true},
                                          SharedCase{"vmtk-aorta-centerline/aorta-centerline.vtp", true},
                                          SharedCase{"vascpy-mouse-vessels/penetrating_artery.vtk", true},
-                                         SharedCase{"vascpy-mouse-vessels/test_smaller_vasculature.vtk", true},
+                                         SharedCase{"vascpy-mouse-vessels/test_smaller_vasculature.vtk",
+                                                    true},
                                          SharedCase{"secomb-rat-cortex-50/network.vtk", false},
                                          SharedCase{"secomb-rat-mesentery/network.vtk", false},
                                          SharedCase{"vesselgraph-demo/vertices.csv", false}),
