@@ -8,6 +8,11 @@ namespace vesselmesh {
 
 namespace {
 
+// Gentler corners are left to the sampling: moving sections onto them gained little on real tracings
+// and made the tubes of smooth ones (human-brain-arteries) less even.
+constexpr double kCornerDegrees = 30;
+const double kCornerCosine = std::cos(kCornerDegrees * M_PI / 180);
+
 struct Spacing {
   const BranchCurve& curve;
   double alpha, beta;
@@ -16,7 +21,9 @@ struct Spacing {
     return std::max(alpha * r / (1.0 + beta * curve.kappa_at(s)), 0.25 * r);
   }
   /// How far `t` is from being the next section after `s`: ≥ 0 once it is far enough.
-  double gap(double s, double t) const { return (curve.position(t) - curve.position(s)).norm() - g(s) - g(t); }
+  double gap(double s, double t) const {
+    return (curve.position(t) - curve.position(s)).norm() - g(s) - g(t);
+  }
 };
 
 /// The next section from `s` towards `limit` (either direction): the first root of gap(s, ·), bracketed
@@ -91,14 +98,47 @@ std::vector<double> bidirectional(const Spacing& sp, double start, double end, d
   return left;
 }
 
+/// Moves sections onto the polyline's corners that turn by more than kCornerDegrees, sharpest first,
+/// each onto the nearest section not moved yet, where both of its gaps stay at least meet_min_ratio of
+/// their desired length. Sections a diameter apart cut such a corner, where the input's round cones
+/// have a whole sphere: a section on the corner keeps the tube out to it (a 60° zigzag of points four
+/// radii apart: 95th-percentile radius error 22 % → 13 %).
+void snap_to_corners(const Spacing& sp, std::vector<double>& arcs, double meet_min_ratio) {
+  const BranchCurve& c = sp.curve;
+  std::vector<std::pair<double, std::size_t>> corners;  // (cosine of the turn, point)
+  for (std::size_t j = 1; j + 1 < c.points.size(); ++j) {
+    if (c.arc[j] <= arcs.front() || c.arc[j] >= arcs.back()) continue;
+    const Vec3 in = c.points[j] - c.points[j - 1], out = c.points[j + 1] - c.points[j];
+    const double cosine = in.dot(out) / (in.norm() * out.norm());
+    if (cosine < kCornerCosine) corners.emplace_back(cosine, j);
+  }
+  std::sort(corners.begin(), corners.end());
+  std::vector<char> snapped(arcs.size(), 0);
+  auto fits = [&](double a, double b) {
+    return (c.position(b) - c.position(a)).norm() >= meet_min_ratio * (sp.g(a) + sp.g(b));
+  };
+  for (const auto& [cosine, j] : corners) {
+    const double at = c.arc[j];
+    const std::size_t after = std::upper_bound(arcs.begin(), arcs.end(), at) - arcs.begin();
+    const std::size_t i = at - arcs[after - 1] < arcs[after] - at ? after - 1 : after;
+    if (i == 0 || i + 1 == arcs.size() || snapped[i]) continue;
+    if (!fits(arcs[i - 1], at) || !fits(at, arcs[i + 1])) continue;
+    arcs[i] = at;
+    snapped[i] = 1;
+  }
+}
+
 }  // namespace
 
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
                                   const SamplingOptions& options) {
   const Spacing sp{curve, options.alpha, options.beta * curve.median_radius};
   if (end <= start) return {start, end};
-  return options.method == Sampling::unidirectional ? unidirectional(sp, start, end)
-                                                    : bidirectional(sp, start, end, options.meet_min_ratio);
+  std::vector<double> arcs = options.method == Sampling::unidirectional
+                                 ? unidirectional(sp, start, end)
+                                 : bidirectional(sp, start, end, options.meet_min_ratio);
+  snap_to_corners(sp, arcs, options.meet_min_ratio);
+  return arcs;
 }
 
 }  // namespace vesselmesh

@@ -3,7 +3,8 @@
 //   |x_{i+1} − x_i| = g_{i+1} + g_i,   g = α·r / (1 + β·κ),
 // so that sections crowd where the vessel is thin or bends. Bidirectional sampling (the default)
 // runs two fronts from both ends towards the middle, so the irregular gap falls mid-branch instead of
-// next to a joint, where a short last gap would pinch the tube.
+// next to a joint, where a short last gap would pinch the tube. Then the sharp corners of a coarse
+// polyline (over 30°) each take the nearest section, so that the tube does not cut them.
 
 #include <vector>
 
