@@ -10,9 +10,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/curvature/curvature.hpp"
-#include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
 #include "vesselmesh/option_names.hpp"
@@ -77,13 +77,10 @@ using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-CenterlineData data_from_arrays(const Points& points, const Indices& edges,
-                                const std::optional<Values>& radius, const std::optional<Values>& edge_radius,
-                                const std::optional<Indices>& roots) {
-  if (points.ndim() != 2 || points.shape(1) != 3)
-    throw InputError("arrays", "", "points must have shape (N, 3)");
-  if (edges.ndim() != 2 || edges.shape(1) != 2)
-    throw InputError("arrays", "", "edges must have shape (E, 2)");
+CenterlineData data_from_arrays(const Points& points, const Indices& edges, const std::optional<Values>& radius,
+                                const std::optional<Values>& edge_radius, const std::optional<Indices>& roots) {
+  if (points.ndim() != 2 || points.shape(1) != 3) throw InputError("arrays", "", "points must have shape (N, 3)");
+  if (edges.ndim() != 2 || edges.shape(1) != 2) throw InputError("arrays", "", "edges must have shape (E, 2)");
   CenterlineData d;
   d.points.resize(points.shape(0));
   std::memcpy(d.points.data(), points.data(), sizeof(double) * 3 * d.points.size());
@@ -109,38 +106,35 @@ CenterlineData data_from_arrays(const Points& points, const Indices& edges,
 
 py::object json_to_python(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
-/// Faces of any integer type (int32, as the core hands them out, is read in place; others are converted
-/// to int64 first), each index checked against vertex_count.
-template <typename I>
-std::vector<Tri> faces_from_array(const py::array_t<I, py::array::c_style | py::array::forcecast>& faces,
-                                  py::ssize_t vertex_count) {
-  if (!faces) throw InputError("arrays", "", "faces must be an (F, 3) array of integer vertex indices");
-  if (faces.ndim() != 2 || faces.shape(1) != 3)
-    throw InputError("arrays", "", "faces must have shape (F, 3)");
-  std::vector<Tri> out(faces.shape(0));
-  const I* f = faces.data();
-  for (py::ssize_t i = 0; i < faces.shape(0); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const I v = f[3 * i + k];
-      if (v < 0 || v >= vertex_count)
-        throw InputError("arrays", "face " + std::to_string(i),
-                         "vertex index " + std::to_string(v) + " is out of range");
-      out[i][k] = static_cast<int32_t>(v);
-    }
-  return out;
+/// (F,3) faces of any integer type as the core's triangles, each index checked against vertex_count.
+/// int32 faces (what the core hands out) are read in place; others are converted to int64 first.
+std::vector<Tri> faces_from(const py::object& array, py::ssize_t vertex_count) {
+  auto convert = [&](auto faces) {
+    using I = typename decltype(faces)::value_type;
+    if (!faces) throw InputError("arrays", "", "faces must be an (F, 3) array of integer vertex indices");
+    if (faces.ndim() != 2 || faces.shape(1) != 3) throw InputError("arrays", "", "faces must have shape (F, 3)");
+    std::vector<Tri> out(faces.shape(0));
+    const I* f = faces.data();
+    for (py::ssize_t i = 0; i < faces.shape(0); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const I v = f[3 * i + k];
+        if (v < 0 || v >= vertex_count)
+          throw InputError("arrays", "face " + std::to_string(i), "vertex index " + std::to_string(v) +
+                                                                     " is out of range");
+        out[i][k] = static_cast<int32_t>(v);
+      }
+    return out;
+  };
+  using Int32 = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
+  return py::isinstance<py::array_t<int32_t>>(array) ? convert(Int32::ensure(array)) : convert(Indices::ensure(array));
 }
 
 TriMesh mesh_from_arrays(const Points& vertices, const py::object& faces) {
-  if (vertices.ndim() != 2 || vertices.shape(1) != 3)
-    throw InputError("arrays", "", "vertices must have shape (V, 3)");
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) throw InputError("arrays", "", "vertices must have shape (V, 3)");
   TriMesh m;
   m.vertices.resize(vertices.shape(0));
   std::memcpy(m.vertices.data(), vertices.data(), sizeof(double) * 3 * m.vertices.size());
-  m.faces =
-      py::isinstance<py::array_t<int32_t>>(faces)
-          ? faces_from_array(py::array_t<int32_t, py::array::c_style | py::array::forcecast>::ensure(faces),
-                             vertices.shape(0))
-          : faces_from_array(Indices::ensure(faces), vertices.shape(0));
+  m.faces = faces_from(faces, vertices.shape(0));
   return m;
 }
 
@@ -164,8 +158,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       },
       py::arg("path"), py::arg("radius_array") = "",
       "Read a centerline file (.swc .vtk .vtp, or a vertices/edges .csv pair) into a dict of numpy arrays:\n"
-      "points (N,3) float64, radius (N,) or None, edges (E,2) int32, edge_radius (E,) or None, roots (R,) "
-      "int32.");
+      "points (N,3) float64, radius (N,) or None, edges (E,2) int32, edge_radius (E,) or None, roots (R,) int32.");
 
   m.def(
       "synthesize",
@@ -203,9 +196,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
           py::arg("path"), py::arg("radius_array") = "", "Read a centerline file and build its graph.")
       .def_property_readonly("points", [](const CenterlineGraph& g) { return points_array(g.points); })
       .def_property_readonly("edges", [](const CenterlineGraph& g) { return edges_array(g.edges); })
-      .def_property_readonly(
-          "radius", [](const CenterlineGraph& g) { return optional_vector(g.radius); },
-          "(N,) the largest radius of each point's edge ends")
+      .def_property_readonly("radius", [](const CenterlineGraph& g) { return optional_vector(g.radius); },
+                             "(N,) the largest radius of each point's edge ends")
       .def_property_readonly(
           "end_radius",
           [](const CenterlineGraph& g) {
@@ -213,10 +205,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
                             {static_cast<py::ssize_t>(g.end_radius.size()), 2});
           },
           "(E,2) the radius at each end of each edge")
-      .def_property_readonly("roots",
-                             [](const CenterlineGraph& g) {
-                               return to_array(g.roots.data(), {static_cast<py::ssize_t>(g.roots.size())});
-                             })
+      .def_property_readonly("roots", [](const CenterlineGraph& g) {
+        return to_array(g.roots.data(), {static_cast<py::ssize_t>(g.roots.size())});
+      })
       .def_property_readonly("loops", [](const CenterlineGraph& g) { return g.loops; })
       .def_property_readonly("components", [](const CenterlineGraph& g) { return g.components; })
       .def(
@@ -226,8 +217,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
-         const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
-         double threshold, const std::string& measure, double angle) {
+         const std::string& caps, bool curvature, const std::string& method, int uniform_levels, double threshold,
+         const std::string& measure, double angle) {
         MeshOptions o;
         o.subdivision.levels = levels;
         o.subdivision.method = choice("method", method, refinement_names());
@@ -258,14 +249,12 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
       py::arg("measure") = "tube-departure", py::arg("angle") = 160.0,
-      "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 "
-      "(counter-clockwise\n"
+      "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
       "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
-      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or "
-      "'dihedral';\n"
-      "threshold and measure ('rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for curvature, angle\n"
-      "(degrees) for dihedral; the first uniform_levels levels split every triangle.");
+      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or 'dihedral';\n"
+      "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
+      "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.");
 
   m.def(
       "check",
@@ -293,35 +282,29 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         return property_dict(properties);
       },
       py::arg("vertices"), py::arg("faces"),
-      "Per-vertex curvature of a surface by 2-ring quadratic fitting: {name: (V,) float32} for k1, k2, "
-      "mean,\n"
+      "Per-vertex curvature of a surface by 2-ring quadratic fitting: {name: (V,) float32} for k1, k2, mean,\n"
       "gaussian and rms (1/length, convex positive for faces counter-clockwise from outside).");
 
   m.def(
       "edges",
-      [](const py::array_t<int32_t, py::array::c_style | py::array::forcecast>& faces, int32_t vertex_count) {
-        if (faces.ndim() != 2 || faces.shape(1) != 3)
-          throw InputError("arrays", "", "faces must have shape (F, 3)");
-        std::vector<Tri> f(faces.shape(0));
-        if (!f.empty()) std::memcpy(f.data(), faces.data(), sizeof(Tri) * f.size());
+      [](const py::object& faces, int32_t vertex_count) {
+        const std::vector<Tri> f = faces_from(faces, vertex_count);
         MeshEdges e;
         {
           py::gil_scoped_release release;
           e = mesh_edges(f, vertex_count);
         }
-        return py::make_tuple(edges_array(e.edges),
-                              to_array(e.corner_edges.empty() ? nullptr : e.corner_edges.front().data(),
-                                       {static_cast<py::ssize_t>(e.corner_edges.size()), 3}));
+        return py::make_tuple(edges_array(e.edges), to_array(e.corner_edges.empty() ? nullptr : e.corner_edges.front().data(),
+                                                             {static_cast<py::ssize_t>(e.corner_edges.size()), 3}));
       },
       py::arg("faces"), py::arg("vertex_count"),
-      "The edges of a triangle mesh: (edges (E,2) int32, lower vertex first, sorted; corner_edges (F,3) "
-      "int32,\n"
+      "The edges of a triangle mesh: (edges (E,2) int32, lower vertex first, sorted; corner_edges (F,3) int32,\n"
       "the edge from each face's corner k to corner k+1), as Blender stores a mesh's edges and loops.");
 
   m.def(
       "surface_distance",
-      [](const Points& vertices, const py::object& faces, const Points& to_vertices,
-         const py::object& to_faces, const CenterlineGraph& graph) {
+      [](const Points& vertices, const py::object& faces, const Points& to_vertices, const py::object& to_faces,
+         const CenterlineGraph& graph) {
         const TriMesh from = mesh_from_arrays(vertices, faces), to = mesh_from_arrays(to_vertices, to_faces);
         SurfaceDistanceReport report;
         {
@@ -331,10 +314,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         return json_to_python(report_json(report, -1));
       },
       py::arg("vertices"), py::arg("faces"), py::arg("to_vertices"), py::arg("to_faces"), py::arg("graph"),
-      "Distance from a surface (sampled at its vertices and face centroids) to another, relative to the "
-      "local\n"
-      "radius of the graph: {'vertices': {...}, 'centroids': {...}}, each with min, median, p95, max, mean, "
-      "count.");
+      "Distance from a surface (sampled at its vertices and face centroids) to another, relative to the local\n"
+      "radius of the graph: {'vertices': {...}, 'centroids': {...}}, each with min, median, p95, max, mean, count.");
 
   m.def(
       "radius_error",
