@@ -294,8 +294,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
           py::gil_scoped_release release;
           e = mesh_edges(f, vertex_count);
         }
-        return py::make_tuple(edges_array(e.edges), to_array(e.corner_edges.empty() ? nullptr : e.corner_edges.front().data(),
-                                                             {static_cast<py::ssize_t>(e.corner_edges.size()), 3}));
+        const int32_t* corner_edges = e.corner_edges.empty() ? nullptr : e.corner_edges.front().data();
+        return py::make_tuple(edges_array(e.edges),
+                              to_array(corner_edges, {static_cast<py::ssize_t>(e.corner_edges.size()), 3}));
       },
       py::arg("faces"), py::arg("vertex_count"),
       "The edges of a triangle mesh: (edges (E,2) int32, lower vertex first, sorted; corner_edges (F,3) int32,\n"

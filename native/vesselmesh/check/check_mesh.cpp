@@ -12,6 +12,7 @@
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/graph/union_find.hpp"
+#include "vesselmesh/mesh/mesh_edges.hpp"
 
 namespace vesselmesh {
 
@@ -299,75 +300,69 @@ nlohmann::ordered_json distribution_json(const Distribution& d) {
 TopologyReport check_topology(const TriMesh& mesh) {
   require_valid_indices(mesh);
   const std::vector<Tri>& faces = mesh.faces;
-  const auto face_count = static_cast<int32_t>(faces.size());
   TopologyReport r;
-  r.faces = face_count;
+  r.faces = static_cast<int64_t>(faces.size());
 
   // The volume is taken about the middle of the vertices, which keeps the products small.
   Box bounds;
   for (const Vec3& p : mesh.vertices) bounds.extend(p);
   const Vec3 origin = 0.5 * (bounds.lo + bounds.hi);
 
-  // One half-edge per corner, from faces[face][corner] to the next corner, keyed by its undirected
-  // edge: sorting brings the faces of each edge together.
-  struct HalfEdge {
-    uint64_t edge;
-    int32_t face, corner;
-  };
-  std::vector<HalfEdge> half;
-  half.reserve(3 * faces.size());
+  // Faces with three distinct vertices; the others count as degenerate and are left out.
+  std::vector<Tri> valid;
+  valid.reserve(faces.size());
   UnionFind components(mesh.vertices.size());
   std::vector<char> used(mesh.vertices.size(), 0);
-  int64_t valid_faces = 0;
-  for (int32_t f = 0; f < face_count; ++f) {
-    const Tri& face = faces[f];
+  for (const Tri& face : faces) {
     if (repeats_vertex(face)) {
       ++r.degenerate_faces;
       continue;
     }
     const Triangle t = corners(mesh, face);
     if (has_no_area(t)) ++r.degenerate_faces;
-    ++valid_faces;
+    valid.push_back(face);
     r.signed_volume += (t[0] - origin).dot((t[1] - origin).cross(t[2] - origin)) / 6.0;
-    for (int32_t k = 0; k < 3; ++k) {
-      const auto a = static_cast<uint32_t>(face[k]), b = static_cast<uint32_t>(face[(k + 1) % 3]);
-      half.push_back({uint64_t{std::min(a, b)} << 32 | std::max(a, b), f, k});
-      used[a] = 1;
-    }
+    for (int32_t v : face) used[v] = 1;
     components.unite(face[0], face[1]);
     components.unite(face[1], face[2]);
   }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.edge < y.edge; });
 
-  // Corners (3·face + corner) at one vertex are joined when their faces share an edge there; each
-  // resulting set is one fan of faces round the vertex.
-  auto start = [&](const HalfEdge& h) { return faces[h.face][h.corner]; };
-  auto corner_at = [&](const HalfEdge& h, int32_t v) {
-    return 3 * h.face + (start(h) == v ? h.corner : (h.corner + 1) % 3);
-  };
-  UnionFind fans(3 * faces.size());
-  for (std::size_t first = 0, end = 0; first < half.size(); first = end) {
-    while (end < half.size() && half[end].edge == half[first].edge) ++end;
-    ++r.edges;
-    const std::size_t count = end - first;
+  // Each edge's corners (3·face + k, the corner where the face's side along the edge starts), grouped
+  // by edge.
+  const MeshEdges e = mesh_edges(valid, static_cast<int32_t>(mesh.vertices.size()));
+  std::vector<int64_t> first(e.edges.size() + 1, 0);
+  for (const Tri& c : e.corner_edges)
+    for (int32_t edge : c) ++first[edge + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<int32_t> by_edge(3 * valid.size());
+  std::vector<int64_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t c = 0; c < by_edge.size(); ++c)
+    by_edge[fill[e.corner_edges[c / 3][c % 3]]++] = static_cast<int32_t>(c);
+
+  // Corners at one vertex are joined when their faces share an edge there; each resulting set is one
+  // fan of faces round the vertex.
+  auto start = [&](int32_t c) { return valid[c / 3][c % 3]; };
+  auto corner_at = [&](int32_t c, int32_t v) { return c - c % 3 + (start(c) == v ? c % 3 : (c % 3 + 1) % 3); };
+  UnionFind fans(by_edge.size());
+  r.edges = static_cast<int64_t>(e.edges.size());
+  for (std::size_t edge = 0; edge < e.edges.size(); ++edge) {
+    const int32_t* c = by_edge.data() + first[edge];
+    const int64_t count = first[edge + 1] - first[edge];
     if (count == 1)
       ++r.boundary_edges;
     else if (count > 2)
       ++r.non_manifold_edges;
-    else if (start(half[first]) == start(half[first + 1]))
+    else if (start(c[0]) == start(c[1]))
       ++r.inconsistent_edges;
-    const auto lo = static_cast<int32_t>(half[first].edge >> 32);
-    const auto hi = static_cast<int32_t>(half[first].edge & 0xffffffffu);
-    for (std::size_t h = first + 1; h < end; ++h) {
-      fans.unite(corner_at(half[first], lo), corner_at(half[h], lo));
-      fans.unite(corner_at(half[first], hi), corner_at(half[h], hi));
-    }
+    for (int64_t h = 1; h < count; ++h)
+      for (int32_t v : e.edges[edge]) fans.unite(corner_at(c[0], v), corner_at(c[h], v));
   }
   std::vector<int32_t> fan_count(mesh.vertices.size(), 0);
-  for (int32_t f = 0; f < face_count; ++f)
-    if (!repeats_vertex(faces[f]))
-      for (int32_t k = 0; k < 3; ++k)
-        if (fans.find(3 * f + k) == 3 * f + k) ++fan_count[faces[f][k]];
+  for (std::size_t f = 0; f < valid.size(); ++f)
+    for (int32_t k = 0; k < 3; ++k) {
+      const auto c = static_cast<int32_t>(3 * f + k);
+      if (fans.find(c) == c) ++fan_count[valid[f][k]];
+    }
   r.non_manifold_vertices =
       std::count_if(fan_count.begin(), fan_count.end(), [](int32_t n) { return n > 1; });
 
@@ -376,7 +371,7 @@ TopologyReport check_topology(const TriMesh& mesh) {
     ++r.vertices;
     if (components.find(static_cast<int32_t>(v)) == static_cast<int32_t>(v)) ++r.components;
   }
-  r.euler_characteristic = r.vertices - r.edges + valid_faces;
+  r.euler_characteristic = r.vertices - r.edges + static_cast<int64_t>(valid.size());
   if (r.closed_manifold()) r.genus = (2 * r.components - r.euler_characteristic) / 2;
   return r;
 }
