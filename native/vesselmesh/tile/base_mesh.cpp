@@ -58,12 +58,6 @@ struct Tunnel {
   double reach() const { return 4 * radius; }
 };
 
-/// A hull point of a patch that closes no opening, and the centerline point it stands for.
-struct RimPoint {
-  Vec3 at = Vec3::Zero(), axis = Vec3::Zero();
-  double radius = 0;
-};
-
 /// A joint patch: one joint, or several joints too close to part, and the branch ends that meet it.
 struct Patch {
   std::vector<int32_t> joints;  ///< joint points
@@ -71,7 +65,7 @@ struct Patch {
   /// Hull points that close no opening: around each tunnel, its loop's points at the height of the
   /// tubes' corners on either side of the loop's plane, so that the hull covers the loop and surrounds
   /// the hole even where no branch leaves the loop.
-  std::vector<RimPoint> rim;
+  std::vector<Vec3> rim;
 };
 
 class Tiler {
@@ -144,7 +138,7 @@ class Tiler {
 
   /// How far the square of `e` may move: to the far end of its branch; a tunnel's mouth, up to the
   /// tunnel's reach from the loop's centroid.
-  double reach(const End& e) const {
+  double travel(const End& e) const {
     return kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].reach() : curves_[e.branch].length();
   }
 
@@ -178,7 +172,7 @@ class Tiler {
       if (&ends_[i] != &e)
         for (int k = 0; k < 4; ++k)
           reach = std::max(reach, e.square.normal.dot(ends_[i].square.corner(k, scale()) - e.square.center));
-    for (const RimPoint& r : p.rim) reach = std::max(reach, e.square.normal.dot(r.at - e.square.center));
+    for (const Vec3& r : p.rim) reach = std::max(reach, e.square.normal.dot(r - e.square.center));
     return reach + margin;
   }
 
@@ -213,7 +207,7 @@ class Tiler {
       } else {
         const double r = kind_[e.branch] == Kind::tunnel ? tunnel_[e.branch].hole()
                                                          : c.radius_at(e.at_start ? 0 : c.length());
-        e.t = std::min(reach(e), 0.25 * r * (1 + attempt));
+        e.t = std::min(travel(e), 0.25 * r * (1 + attempt));
       }
       e.square = square_at(e, e.t);
       if (kind_[e.branch] == Kind::shared) e.square.up = shared_up_[e.branch];
@@ -227,7 +221,7 @@ class Tiler {
         const double overlap = intrusion(e, p);
         if (overlap <= 0) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
-        const double length = reach(e);
+        const double length = travel(e);
         e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
@@ -432,11 +426,7 @@ class Tiler {
       for (int32_t s : loop)
         for (std::size_t i = 0; i < curves_[s].points.size(); ++i)
           for (double side : {1.0, -1.0}) {
-            RimPoint r;
-            r.axis = curves_[s].points[i];
-            r.radius = curves_[s].radius[i];
-            r.at = r.axis + side * scale() * r.radius * h.normal;
-            p.rim.push_back(r);
+            p.rim.push_back(curves_[s].points[i] + side * scale() * curves_[s].radius[i] * h.normal);
           }
     }
     for (const Patch& p : patches_) {
@@ -466,8 +456,6 @@ class Tiler {
       const Vec3 offset = s.corner(k, scale()) - s.center;
       const double along = offset.normalized().dot(axis);
       mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
-      mesh_.axis.push_back(s.center);
-      mesh_.axis_radius.push_back(s.radius);
     }
     ++mesh_.sections;
     return first;
@@ -523,7 +511,7 @@ class Tiler {
       std::vector<Vec3> corners;
       for (int32_t i : p.ends)
         for (int k = 0; k < 4; ++k) corners.push_back(ends_[i].square.corner(k, scale()));
-      for (const RimPoint& r : p.rim) corners.push_back(r.at);
+      corners.insert(corners.end(), p.rim.begin(), p.rim.end());
       // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
       // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar
       // square would otherwise come back with both diagonals).
@@ -555,11 +543,9 @@ class Tiler {
         ends_[i].first_vertex = v[0];
         id.insert(id.end(), v.begin(), v.end());
       }
-      for (const RimPoint& r : p.rim) {
+      for (const Vec3& r : p.rim) {
         id.push_back(static_cast<int32_t>(mesh_.vertices.size()));
-        mesh_.vertices.push_back(r.at);
-        mesh_.axis.push_back(r.axis);
-        mesh_.axis_radius.push_back(r.radius);
+        mesh_.vertices.push_back(r);
       }
       for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
       ++mesh_.joints;
@@ -611,7 +597,7 @@ class Tiler {
 
   /// The largest distance of a section's corners from its centre: scale() × r, pushed out by the lean
   /// against `axis` (see add_section).
-  double reach(const Section& s, const Vec3& axis) const {
+  double corner_reach(const Section& s, const Vec3& axis) const {
     return scale() * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
   }
 
@@ -642,9 +628,9 @@ class Tiler {
     }
     for (std::size_t i = first; i < last; ++i) {
       const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
-      const double here = reach(sections[i], axis[i]);
-      if (crosses(sections[before], reach(sections[before], axis[before]), sections[i], here) ||
-          crosses(sections[i], here, sections[after], reach(sections[after], axis[after])))
+      const double here = corner_reach(sections[i], axis[i]);
+      if (crosses(sections[before], corner_reach(sections[before], axis[before]), sections[i], here) ||
+          crosses(sections[i], here, sections[after], corner_reach(sections[after], axis[after])))
         sections[i].center = target[i];
     }
     if (ring) sections.back().center = sections.front().center;
@@ -747,13 +733,9 @@ class Tiler {
       if (new_id[v] < 0) continue;
       new_id[v] = next;
       mesh_.vertices[next] = mesh_.vertices[v];
-      mesh_.axis[next] = mesh_.axis[v];
-      mesh_.axis_radius[next] = mesh_.axis_radius[v];
       ++next;
     }
     mesh_.vertices.resize(next);
-    mesh_.axis.resize(next);
-    mesh_.axis_radius.resize(next);
     for (Quad& q : mesh_.quads)
       for (int32_t& v : q) v = new_id[v];
     for (Tri& t : mesh_.triangles)

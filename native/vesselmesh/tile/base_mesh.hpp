@@ -31,8 +31,6 @@ struct BaseMesh {
   std::vector<Vec3> vertices;
   std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
   std::vector<Tri> triangles;                 ///< joint patches
-  std::vector<Vec3> axis;                     ///< per vertex: the centre of its cross-section
-  std::vector<double> axis_radius;            ///< per vertex: the centerline radius of its cross-section
   int64_t sections = 0;                       ///< cross-sections, joint squares included
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
