@@ -1,4 +1,5 @@
 """Small helpers shared by the add-on tests."""
+import bmesh
 import bpy
 import numpy as np
 
@@ -41,3 +42,13 @@ def attribute(obj, name):
     values = np.empty(width * len(attr.data), dtype=np.float32)
     attr.data.foreach_get("color" if width == 4 else "value", values)
     return values.reshape(-1, 4) if width == 4 else values
+
+
+def edit(centerline, change):
+    """Applies change(bm, radius_layer) to the centerline's mesh through bmesh."""
+    bm = bmesh.new()
+    bm.from_mesh(centerline.data)
+    bm.verts.ensure_lookup_table()
+    change(bm, bm.verts.layers.float["radius"])
+    bm.to_mesh(centerline.data)
+    bm.free()

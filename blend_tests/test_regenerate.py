@@ -5,23 +5,13 @@ import bpy
 import numpy as np
 
 import vesselmesh_core as vm
-from helpers import arrays, assert_closed_manifold, attribute, import_file, topology
+from helpers import arrays, assert_closed_manifold, attribute, edit, import_file, topology
 
 
 def regenerate(obj):
     bpy.context.view_layer.objects.active = obj
     assert bpy.ops.vesselmesh.generate() == {"FINISHED"}
     return obj.vesselmesh.surface if obj.vesselmesh.role == "CENTERLINE" else obj
-
-
-def edit(centerline, change):
-    """Applies change(bm, radius_layer) to the centerline's mesh through bmesh."""
-    bm = bmesh.new()
-    bm.from_mesh(centerline.data)
-    bm.verts.ensure_lookup_table()
-    change(bm, bm.verts.layers.float["radius"])
-    bm.to_mesh(centerline.data)
-    bm.free()
 
 
 def graph_of(centerline):

@@ -5,8 +5,7 @@ does, and Blender then pushes one only for operators that declare UNDO."""
 import bpy
 import numpy as np
 
-from helpers import arrays, assert_closed_manifold, import_file
-from test_regenerate import edit
+from helpers import arrays, assert_closed_manifold, edit, import_file
 
 
 def vessel_objects():
