@@ -47,8 +47,8 @@ class MeshJob:
     """One meshing of a graph by the core, in worker threads (the core releases the GIL while it works).
 
     Once the surface exists, one worker lists its edges for Blender while the other, with curvature,
-    estimates the surface's curvature; the curvature time hides behind the edges and Blender's mesh
-    building.
+    estimates the surface's curvature; Blender builds the mesh from the surface and its edges while the
+    curvature is still being estimated.
     """
 
     def __init__(self, graph, options, curvature):
