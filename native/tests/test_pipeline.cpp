@@ -14,9 +14,11 @@ using namespace vesselmesh;
 
 namespace {
 
-MeshResult mesh_at(const CenterlineGraph& g, int levels, Caps caps = Caps::flat) {
+MeshResult mesh_at(const CenterlineGraph& g, int levels, Caps caps = Caps::flat,
+                   Refinement method = MeshOptions().subdivision.method) {
   MeshOptions o;
   o.subdivision.levels = levels;
+  o.subdivision.method = method;
   o.caps = caps;
   return mesh_centerline(g, o);
 }
@@ -30,6 +32,12 @@ void expect_closed_surface(const TriMesh& mesh, const CenterlineGraph& g, const 
   EXPECT_EQ(t.components, g.components) << what;
   EXPECT_EQ(t.euler_characteristic, 2 * g.components - 2 * g.loops) << what;
   EXPECT_GT(t.signed_volume, 0.0) << what << ": faces point inwards";
+}
+
+/// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
+FidelityReport uniform_level_two_fidelity(const std::string& path) {
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  return radius_fidelity(mesh_at(g, 2, Caps::flat, Refinement::uniform).mesh, g);
 }
 
 }  // namespace
@@ -275,19 +283,6 @@ TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedSurfaceAbsorbing, testing::ValuesIn(kAbsorbingCases), case_name);
-
-namespace {
-
-/// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
-FidelityReport uniform_level_two_fidelity(const std::string& path) {
-  const CenterlineGraph g = build_graph(read_centerline(path));
-  MeshOptions o;
-  o.subdivision.levels = 2;
-  o.subdivision.method = Refinement::uniform;
-  return radius_fidelity(mesh_centerline(g, o).mesh, g);
-}
-
-}  // namespace
 
 TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEightPercentP95) {
   SHARED_DATA_OR_SKIP(path, "human-brain-arteries/arteries_smooth.vtk");
