@@ -168,7 +168,7 @@ TEST(Pipeline, StatsCountEveryStage) {
   o.subdivision.method = Refinement::uniform;
   o.curvature = true;
   const MeshResult r = mesh_centerline(g, o);
-  ASSERT_EQ(r.stages.size(), 4u);                        // tile, triangulate, subdivide, curvature
+  ASSERT_EQ(r.stages.size(), 5u);                        // tile, triangulate, subdivide, fit, curvature
   EXPECT_EQ(r.stages[1].faces * 16, r.stages[2].faces);  // two uniform levels
   EXPECT_EQ(r.stages.back().faces, static_cast<int64_t>(r.mesh.faces.size()));
   EXPECT_EQ(r.tagged, std::vector<double>({1.0, 1.0}));

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "vesselmesh/curvature/curvature.hpp"
+#include "vesselmesh/fit/fit.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -49,6 +50,13 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.tagged = std::move(subdivided.tagged);
   record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
+  if (options.fit) {
+    start = Clock::now();
+    const FitStats fit = fit_to_tubes(result.mesh, graph);
+    result.fitted_vertices = fit.moved;
+    record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
+           static_cast<int64_t>(result.mesh.faces.size()));
+  }
   if (options.curvature) {
     start = Clock::now();
     for (VertexProperty& p : curvature_properties(estimate_curvature(result.mesh)))
@@ -67,6 +75,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["joint_patches"] = result.joint_patches;
   j["absorbed_branches"] = result.absorbed_branches;
   j["tunnels"] = result.tunnels;
+  j["fitted_vertices"] = result.fitted_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   double total = 0;

@@ -1,7 +1,7 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
 //   graph → sample → frames → tile (base mesh) → triangulate → subdivide (uniform or adaptive, onto the
-//   Loop limit surface) [→ curvature]
+//   Loop limit surface) → fit (into the input's tubes) [→ curvature]
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>
@@ -18,6 +18,7 @@ struct MeshOptions {
   SamplingOptions sampling;
   Caps caps = Caps::flat;
   SubdivisionOptions subdivision;
+  bool fit = true;         ///< pull the vertices outside the input's tubes onto their surface (fit/fit.hpp)
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
 };
 
@@ -33,6 +34,7 @@ struct MeshResult {
   std::vector<double> tagged;       ///< per level: the fraction of triangles it tagged for splitting
   std::vector<StageStats> stages;
   int64_t sections = 0, joint_patches = 0, absorbed_branches = 0, tunnels = 0;
+  int64_t fitted_vertices = 0;  ///< vertices the fit stage moved
 };
 
 /// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices

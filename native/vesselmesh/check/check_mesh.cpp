@@ -8,9 +8,10 @@
 #include <stdexcept>
 #include <utility>
 
-#include "vesselmesh/check/bvh.hpp"
+#include "vesselmesh/geometry/bvh.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
+#include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
 
@@ -20,8 +21,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDegenerateArea = 1e-14;  // area / (longest edge)² below which a face has no area
-constexpr double kNearTube = 1.5;          // a point is near a centerline edge within this many local radii
-constexpr double kJointReach = 3.0;        // radii round a shared joint where two branches merely meet
 constexpr std::size_t kMaxExamples = 20;
 
 void require_valid_indices(const TriMesh& mesh) {
@@ -65,175 +64,6 @@ Distribution distribution(std::vector<double> values) {
   d.count = static_cast<int64_t>(n);
   return d;
 }
-
-// --- the centerline as round cones ----------------------------------------------------------------
-
-/// One centerline edge: spheres of radius r0, r1 round c0, c1 and the cone tangent to both.
-struct Cone {
-  Vec3 c0, c1;
-  double r0, r1;
-  int32_t branch;
-  double radius_at(double s) const { return r0 + s * (r1 - r0); }
-  Vec3 point_at(double s) const { return c0 + s * (c1 - c0); }
-};
-
-struct ConeDistance {
-  double distance;  ///< signed: negative inside
-  double radius;    ///< of the sphere of the cone's family (centres on the axis, radii linear) touching
-                    ///< the surface where the point is closest
-};
-
-ConeDistance cone_distance(const Cone& k, const Vec3& p) {
-  const double length = (k.c1 - k.c0).norm();
-  if (length <= std::abs(k.r0 - k.r1)) {  // one end sphere holds the other
-    return k.r0 >= k.r1 ? ConeDistance{(p - k.c0).norm() - k.r0, k.r0}
-                        : ConeDistance{(p - k.c1).norm() - k.r1, k.r1};
-  }
-  // In the half-plane of p and the axis, with t along the axis from c0 and ρ away from it, the side
-  // of the cone is the segment from r0·n to (L, 0) + r1·n with outward normal n = (sinφ, cosφ).
-  const Vec3 axis = (k.c1 - k.c0) / length;
-  const Vec3 d = p - k.c0;
-  const double t = d.dot(axis);
-  const double rho = (d - t * axis).norm();
-  const double sin_phi = (k.r0 - k.r1) / length;
-  const double cos_phi = std::sqrt(1.0 - sin_phi * sin_phi);
-  const double along = t * cos_phi - rho * sin_phi;  // position along the side, 0 where it leaves sphere 0
-  const double side_length = length * cos_phi;
-  if (along <= 0) return {std::hypot(t, rho) - k.r0, k.r0};
-  if (along >= side_length) return {std::hypot(t - length, rho) - k.r1, k.r1};
-  return {t * sin_phi + rho * cos_phi - k.r0, k.radius_at(along / side_length)};
-}
-
-// Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
-std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
-  if (a == 0) return {0.0, e == 0 ? 0.0 : unit(f / e)};
-  const double c = d1.dot(r);
-  if (e == 0) return {unit(-c / a), 0.0};
-  const double b = d1.dot(d2), denominator = a * e - b * b;
-  double s = denominator > 0 ? unit((b * f - c * e) / denominator) : 0.0;  // parallel: any s will do
-  const double t = (b * s + f) / e;
-  if (t < 0) return {unit(-c / a), 0.0};
-  if (t > 1) return {unit((b - c) / a), 1.0};
-  return {s, t};
-}
-
-struct Ball {
-  Vec3 centre;
-  double radius;
-};
-
-// The parameter intervals of segment c0 → c1 that lie outside every ball.
-std::vector<std::array<double, 2>> outside_balls(const Vec3& c0, const Vec3& c1,
-                                                 const std::vector<Ball>& balls) {
-  std::vector<std::array<double, 2>> pieces = {{0.0, 1.0}};
-  const Vec3 d = c1 - c0;
-  const double a = d.squaredNorm();
-  for (const Ball& ball : balls) {
-    const Vec3 m = c0 - ball.centre;
-    const double b = d.dot(m), discriminant = b * b - a * (m.squaredNorm() - ball.radius * ball.radius);
-    if (a == 0 || discriminant <= 0) continue;
-    const double enter = (-b - std::sqrt(discriminant)) / a, leave = (-b + std::sqrt(discriminant)) / a;
-    std::vector<std::array<double, 2>> kept;
-    for (const auto& [lo, hi] : pieces) {
-      if (std::min(hi, enter) > lo) kept.push_back({lo, std::min(hi, enter)});
-      if (hi > std::max(lo, leave)) kept.push_back({std::max(lo, leave), hi});
-    }
-    pieces = std::move(kept);
-  }
-  return pieces;
-}
-
-std::vector<Cone> round_cones(const CenterlineGraph& g) {
-  std::vector<int32_t> branch_of(g.edges.size(), -1);
-  for (std::size_t b = 0; b < g.branches.size(); ++b)
-    for (int32_t e : g.branches[b].edges) branch_of[e] = static_cast<int32_t>(b);
-  std::vector<Cone> cones(g.edges.size());
-  for (std::size_t e = 0; e < g.edges.size(); ++e)
-    cones[e] = {g.points[g.edges[e][0]], g.points[g.edges[e][1]], g.end_radius[e][0], g.end_radius[e][1],
-                branch_of[e]};
-  return cones;
-}
-
-// Each cone's box, wide enough to hold the whole neighbourhood that counts as near it.
-std::vector<Box> near_boxes(const std::vector<Cone>& cones) {
-  std::vector<Box> boxes(cones.size());
-  for (std::size_t e = 0; e < cones.size(); ++e) {
-    const Vec3 margin = Vec3::Constant(kNearTube * std::max(cones[e].r0, cones[e].r1));
-    boxes[e].extend(cones[e].c0 - margin);
-    boxes[e].extend(cones[e].c0 + margin);
-    boxes[e].extend(cones[e].c1 - margin);
-    boxes[e].extend(cones[e].c1 + margin);
-  }
-  return boxes;
-}
-
-class RoundCones {
- public:
-  explicit RoundCones(const CenterlineGraph& g)
-      : graph_(g), cones_(round_cones(g)), bvh_(near_boxes(cones_)) {}
-
-  /// The smallest signed distance from `p` to any cone, with that cone's local radius.
-  ConeDistance nearest(const Vec3& p) const {
-    ConeDistance best{kInf, 0.0};
-    // A cone inside a box is no nearer than the box's signed distance.
-    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, best.distance,
-                [&](int32_t e) {
-                  const ConeDistance d = cone_distance(cones_[e], p);
-                  if (d.distance < best.distance) best = d;
-                });
-    return best;
-  }
-
-  /// True when `p` and `q` are near edges of two different branches whose tubes overlap.
-  bool in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
-    const std::vector<int32_t> near_p = near_edges(p), near_q = near_edges(q);
-    for (int32_t e : near_p)
-      for (int32_t f : near_q)
-        if (cones_[e].branch != cones_[f].branch && overlap(e, f)) return true;
-    return false;
-  }
-
- private:
-  std::vector<int32_t> near_edges(const Vec3& p) const {
-    std::vector<int32_t> near;
-    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
-                [&](int32_t e) {
-                  const Cone& k = cones_[e];
-                  const double s = closest_parameters(k.c0, k.c1, p, p).first;
-                  if ((p - k.point_at(s)).norm() < kNearTube * k.radius_at(s)) near.push_back(e);
-                });
-    return near;
-  }
-
-  // Whether the tubes of edges e and f (of different branches) overlap away from the joints their
-  // branches share: near a shared joint they meet by design, which is no overlap of the input.
-  bool overlap(int32_t e, int32_t f) const {
-    const Branch& a = graph_.branches[cones_[e].branch];
-    const Branch& b = graph_.branches[cones_[f].branch];
-    std::vector<Ball> joints;
-    const std::array<int32_t, 2> ends = {a.points.front(), a.points.back()};  // the same point for a ring
-    for (int i = 0; i < (ends[1] == ends[0] ? 1 : 2); ++i)
-      if (ends[i] == b.points.front() || ends[i] == b.points.back())
-        joints.push_back({graph_.points[ends[i]], kJointReach * graph_.radius[ends[i]]});
-    const Cone& k = cones_[e];
-    const Cone& l = cones_[f];
-    for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))
-      for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
-        const auto [u, v] =
-            closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
-        const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
-        if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t)) return true;
-      }
-    return false;
-  }
-
-  const CenterlineGraph& graph_;
-  std::vector<Cone> cones_;
-  Bvh bvh_;
-};
 
 // --- terminal caps --------------------------------------------------------------------------------
 

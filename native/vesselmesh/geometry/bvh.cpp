@@ -1,4 +1,4 @@
-#include "vesselmesh/check/bvh.hpp"
+#include "vesselmesh/geometry/bvh.hpp"
 
 #include <algorithm>
 #include <numeric>

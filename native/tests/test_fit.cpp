@@ -1,0 +1,136 @@
+// The fit stage: vertices outside the input's tubes come onto them (to within τ of the local radius),
+// vertices inside stay, and no move folds a triangle or carries it through another part of the
+// surface; and the round cones' distance and direction that it relies on.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fixtures.hpp"
+#include "surfaces.hpp"
+#include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/fit/fit.hpp"
+#include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/pipeline.hpp"
+
+using namespace vesselmesh;
+
+namespace {
+
+/// The uniform level-2 surface before the fit.
+TriMesh limit_surface(const CenterlineGraph& g) {
+  MeshOptions o;
+  o.subdivision.method = Refinement::uniform;
+  o.fit = false;
+  return mesh_centerline(g, o).mesh;
+}
+
+double largest_error(const TriMesh& mesh, const CenterlineGraph& g) {
+  return radius_fidelity(mesh, g).relative_error.max;
+}
+
+}  // namespace
+
+TEST(RoundCones, DirectionIsTheGradientOfTheDistanceAtEveryScale) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> offset(-3, 3);
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    // A tapered cone (both end spheres and the side are reached) and a sphere that holds its neighbour.
+    const RoundCone cones[] = {{Vec3(0, 0, 0), Vec3(4, 0, 0) * scale, 1.0 * scale, 0.5 * scale, 0},
+                               {Vec3(0, 0, 0), Vec3(0.2, 0, 0) * scale, 1.0 * scale, 0.5 * scale, 0}};
+    for (const RoundCone& k : cones)
+      for (int i = 0; i < 200; ++i) {
+        const Vec3 p = scale * Vec3(offset(random) + 2, offset(random), offset(random));
+        const ConeDistance d = cone_distance(k, p);
+        const double h = 1e-6 * scale;
+        Vec3 gradient;
+        for (int a = 0; a < 3; ++a)
+          gradient[a] = (cone_distance(k, p + h * Vec3::Unit(a)).distance -
+                         cone_distance(k, p - h * Vec3::Unit(a)).distance) /
+                        (2 * h);
+        EXPECT_NEAR((d.direction - gradient).norm(), 0.0, 1e-5) << "scale " << scale << " at " << p.transpose();
+        EXPECT_NEAR(d.direction.norm(), 1.0, 1e-12);
+        // The closest surface point is the distance away along the direction.
+        EXPECT_NEAR(cone_distance(k, p - d.distance * d.direction).distance, 0.0, 1e-9 * scale);
+      }
+  }
+}
+
+TEST(Fit, CrotchOfABifurcationComesOntoTheTubesAtEveryScale) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::bifurcation(scale));
+    TriMesh mesh = limit_surface(g);
+    // The Loop surface webs the crotch between the two children, far outside their tubes.
+    EXPECT_GT(largest_error(mesh, g), 0.3) << "scale " << scale;
+    const FitStats stats = fit_to_tubes(mesh, g);
+    EXPECT_GT(stats.moved, 0);
+    EXPECT_EQ(stats.held_back, 0) << "scale " << scale;
+    EXPECT_LE(largest_error(mesh, g), 0.0301) << "scale " << scale;
+  }
+}
+
+TEST(Fit, VerticesInsideTheTubesStayWhereTheyAre) {
+  const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
+  const TriMesh before = limit_surface(g);
+  TriMesh after = before;
+  fit_to_tubes(after, g);
+  const FidelityReport f = radius_fidelity(before, g);
+  int inside = 0, outside_moved = 0;
+  for (std::size_t v = 0; v < before.vertices.size(); ++v) {
+    if (std::isnan(f.per_vertex[v])) continue;  // end caps
+    if (f.per_vertex[v] <= 0) {
+      ++inside;
+      EXPECT_EQ(after.vertices[v], before.vertices[v]) << "vertex " << v;
+    } else {
+      outside_moved += after.vertices[v] != before.vertices[v];
+    }
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(outside_moved, 100);
+}
+
+TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) {
+  // Two sheets above a tube of radius 0.5 along x, at heights 1 and 0.75: pulled straight down onto the
+  // tube, the upper one would pass through the lower one.
+  CenterlineData d;
+  d.points = {Vec3(-5, 0, 0), Vec3(5, 0, 0)};
+  d.radius = {0.5, 0.5};
+  d.edges = {{0, 1}};
+  const CenterlineGraph g = build_graph(d);
+  TriMesh mesh;
+  const int n = 8;
+  for (double height : {1.0, 0.75}) {
+    const int32_t first = static_cast<int32_t>(mesh.vertices.size());
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) mesh.vertices.push_back(Vec3(-1 + 2.0 * i / n, -0.2 + 0.4 * j / n, height));
+    for (Tri t : surfaces::grid_faces(n, n)) mesh.faces.push_back({t[0] + first, t[1] + first, t[2] + first});
+  }
+  ASSERT_EQ(find_self_intersections(mesh).pairs, 0);
+
+  // Every vertex moved all the way: the sheets meet.
+  TriMesh naive = mesh;
+  const RoundCones cones(g);
+  for (Vec3& p : naive.vertices) {
+    const ConeDistance c = cones.nearest(p);
+    p -= c.distance * c.direction;
+  }
+  ASSERT_GT(find_self_intersections(naive).pairs, 0);
+
+  const FitStats stats = fit_to_tubes(mesh, g);
+  EXPECT_GT(stats.held_back, 0);
+  EXPECT_EQ(find_self_intersections(mesh).pairs, 0);
+}
+
+TEST(Fit, StageIsPartOfThePipelineAndCanBeLeftOut) {
+  const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
+  MeshOptions o;
+  o.subdivision.method = Refinement::uniform;
+  const MeshResult with = mesh_centerline(g, o);
+  o.fit = false;
+  const MeshResult without = mesh_centerline(g, o);
+  EXPECT_EQ(with.stages[3].stage, "fit");
+  EXPECT_GT(with.fitted_vertices, 0);
+  EXPECT_EQ(without.fitted_vertices, 0);
+  EXPECT_EQ(without.stages.size(), 3u);
+  EXPECT_EQ(with.mesh.faces, without.mesh.faces);
+  EXPECT_LT(largest_error(with.mesh, g), largest_error(without.mesh, g));
+}

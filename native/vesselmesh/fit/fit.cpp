@@ -1,0 +1,198 @@
+#include "vesselmesh/fit/fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include "vesselmesh/geometry/bvh.hpp"
+#include "vesselmesh/geometry/predicates.hpp"
+#include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/parallel.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+/// τ: how far outside the tubes, in local radii, a vertex far outside them is left (see closest_moves).
+constexpr double kKeep = 0.03;
+/// A triangle whose normal turns further than this (cosine: a right angle) has folded over. The sides of a
+/// crotch's crease turn by up to about 60° from the web they come from.
+constexpr double kTurnCosine = 0.0;
+/// Moves longer than this, in local radii, can carry a triangle through another part of the surface
+/// (another vessel passing close by); shorter ones stay within the surface's own wobble.
+constexpr double kLongMove = 0.2;
+/// A move that folds or crosses is halved, and dropped once it has been cut this many times.
+constexpr int kHalvings = 6;
+
+Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
+  return (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
+}
+
+Triangle corners(const std::vector<Vec3>& v, const Tri& t) { return {v[t[0]], v[t[1]], v[t[2]]}; }
+
+/// Each vertex's way onto the union of the cones when it lies outside (zero otherwise), and the local radius.
+void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, std::vector<Vec3>& move,
+                   std::vector<double>& radius) {
+  parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
+    int32_t hint = -1;  // consecutive vertices are mostly near each other
+    for (std::size_t v = begin; v < end; ++v) {
+      const Vec3& p = vertices[v];
+      const ConeDistance d = cones.nearest(p, &hint, false);
+      radius[v] = d.radius;
+      if (!(d.distance > 1e-9 * d.radius) || !std::isfinite(d.distance)) continue;
+      // Left as far outside as tanh(d / τr)·τr: a ripple much smaller than τr (the Loop surface's own,
+      // about 1 % round a tube) keeps its smooth shape, a web or a filled crease comes within τr.
+      const double reach = kKeep * d.radius;
+      Vec3 step = -(d.distance - reach * std::tanh(d.distance / reach)) * d.direction;
+      // The closest point on one cone can lie inside another (at a crotch both are near): stop where the
+      // way there enters the union.
+      if (cones.nearest(p + step, &hint, false).distance < -1e-6 * d.radius) {
+        double outside = 0, inside = 1;
+        for (int i = 0; i < 20; ++i) {
+          const double mid = 0.5 * (outside + inside);
+          (cones.nearest(p + mid * step, &hint, false).distance < 0 ? inside : outside) = mid;
+        }
+        step *= outside;
+      }
+      move[v] = step;
+    }
+  });
+}
+
+bool touches(const Tri& t, const std::vector<char>& dirty) {
+  return dirty[t[0]] || dirty[t[1]] || dirty[t[2]];
+}
+
+/// Corners of the moved triangles with a dirty corner whose normal turned over.
+std::vector<int32_t> folded(const TriMesh& mesh, const std::vector<Vec3>& moved,
+                            const std::vector<char>& dirty, const std::vector<int32_t>& faces,
+                            const std::vector<Vec3>& before) {
+  std::vector<int32_t> out;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const Tri& t = mesh.faces[faces[i]];
+    if (!touches(t, dirty)) continue;
+    const Vec3 now = face_normal(moved, t);
+    if (now.dot(before[i]) < kTurnCosine * now.norm() * before[i].norm())
+      out.insert(out.end(), t.begin(), t.end());
+  }
+  return out;
+}
+
+bool share_corner(const Tri& a, const Tri& b) {
+  for (int32_t v : a)
+    if (v == b[0] || v == b[1] || v == b[2]) return true;
+  return false;
+}
+
+/// Pairs of a triangle with a long move and another triangle, not its neighbour (a neighbour would fold
+/// first), that the move may carry it through: their boxes, each swept from the triangle's place before the
+/// fit to after it (every halved move lies in between), overlap, and they did not cross before the fit
+/// (input tubes that overlap cross anyway).
+std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, const std::vector<Vec3>& moved,
+                                                        const std::vector<int32_t>& long_faces) {
+  std::vector<std::array<int32_t, 2>> out;
+  if (long_faces.empty()) return out;
+  auto swept = [&](const Tri& t) {
+    Box box;
+    for (int32_t v : t) box.extend(mesh.vertices[v]), box.extend(moved[v]);
+    return box;
+  };
+  std::vector<Box> boxes(long_faces.size());
+  Box all;
+  for (std::size_t i = 0; i < long_faces.size(); ++i) all.extend(boxes[i] = swept(mesh.faces[long_faces[i]]));
+  const Bvh bvh(boxes);
+  std::mutex lock;
+  parallel_for(mesh.faces.size(), [&](std::size_t begin, std::size_t end) {
+    std::vector<std::array<int32_t, 2>> found;
+    for (std::size_t g = begin; g < end; ++g) {
+      const Tri& tg = mesh.faces[g];
+      const Box box = swept(tg);
+      if (!box.overlaps(all)) continue;
+      bvh.search([&](const Box& b) { return b.overlaps(box) ? 0.0 : 1.0; }, 0.0,
+                 [&](int32_t i) {
+                   const Tri& tf = mesh.faces[long_faces[i]];
+                   if (!share_corner(tf, tg) &&
+                       !triangle_interiors_meet(corners(mesh.vertices, tf), corners(mesh.vertices, tg)))
+                     found.push_back({long_faces[i], static_cast<int32_t>(g)});
+                 });
+    }
+    const std::lock_guard<std::mutex> guard(lock);
+    out.insert(out.end(), found.begin(), found.end());
+  });
+  return out;
+}
+
+/// Corners of the candidate pairs with a dirty corner that cross.
+std::vector<int32_t> crossing(const TriMesh& mesh, const std::vector<Vec3>& moved,
+                              const std::vector<char>& dirty,
+                              const std::vector<std::array<int32_t, 2>>& candidates) {
+  std::vector<int32_t> out;
+  for (const auto& [f, g] : candidates)
+    if ((touches(mesh.faces[f], dirty) || touches(mesh.faces[g], dirty)) &&
+        triangle_interiors_meet(corners(moved, mesh.faces[f]), corners(moved, mesh.faces[g]))) {
+      out.insert(out.end(), mesh.faces[f].begin(), mesh.faces[f].end());
+      out.insert(out.end(), mesh.faces[g].begin(), mesh.faces[g].end());
+    }
+  return out;
+}
+
+}  // namespace
+
+FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph) {
+  FitStats stats;
+  if (graph.edges.empty()) return stats;
+  const std::size_t n = mesh.vertices.size();
+  std::vector<Vec3> move(n, Vec3::Zero());
+  std::vector<double> radius(n, 0.0);
+  closest_moves(mesh.vertices, RoundCones(graph), move, radius);
+
+  // Only triangles with a moved corner can fold; only those with a long move can cross others.
+  auto moves = [&](const Tri& t, double least) {
+    return std::any_of(t.begin(), t.end(), [&](int32_t v) { return move[v].norm() > least * radius[v]; });
+  };
+  std::vector<int32_t> faces, long_faces;
+  std::vector<Vec3> before;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Tri& t = mesh.faces[f];
+    if (!moves(t, 0)) continue;
+    faces.push_back(static_cast<int32_t>(f));
+    before.push_back(face_normal(mesh.vertices, t));
+    if (moves(t, kLongMove)) long_faces.push_back(static_cast<int32_t>(f));
+  }
+
+  std::vector<Vec3> moved = mesh.vertices;
+  for (std::size_t v = 0; v < n; ++v) moved[v] += move[v];
+  const std::vector<std::array<int32_t, 2>> candidates = crossing_candidates(mesh, moved, long_faces);
+  // Each round halves the moves of the corners of every folded or crossing triangle (once per round);
+  // a vertex halved kHalvings times stays where it was. Only triangles with a corner that the last round
+  // changed (dirty) are looked at again, and every round changes something or ends the loop.
+  std::vector<int> halved(n, 0);
+  std::vector<char> dirty(n, 1);
+  for (;;) {
+    std::vector<int32_t> bad = folded(mesh, moved, dirty, faces, before);
+    const std::vector<int32_t> crossed = crossing(mesh, moved, dirty, candidates);
+    bad.insert(bad.end(), crossed.begin(), crossed.end());
+    std::sort(bad.begin(), bad.end());
+    bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+    std::fill(dirty.begin(), dirty.end(), 0);
+    bool changed = false;
+    for (int32_t v : bad) {
+      if (move[v] == Vec3::Zero()) continue;
+      move[v] = ++halved[v] < kHalvings ? Vec3(0.5 * move[v]) : Vec3::Zero();
+      moved[v] = mesh.vertices[v] + move[v];
+      dirty[v] = 1;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    stats.moved += move[v] != Vec3::Zero();
+    stats.held_back += halved[v] != 0;
+  }
+  mesh.vertices = std::move(moved);
+  return stats;
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,176 @@
+#include "vesselmesh/geometry/round_cones.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "vesselmesh/frames/frames.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNearTube = 1.5;    // a point is near a centerline edge within this many local radii
+constexpr double kJointReach = 3.0;  // radii round a shared joint where two branches merely meet
+
+struct Ball {
+  Vec3 centre;
+  double radius;
+};
+
+// The parameter intervals of segment c0 → c1 that lie outside every ball.
+std::vector<std::array<double, 2>> outside_balls(const Vec3& c0, const Vec3& c1,
+                                                 const std::vector<Ball>& balls) {
+  std::vector<std::array<double, 2>> pieces = {{0.0, 1.0}};
+  const Vec3 d = c1 - c0;
+  const double a = d.squaredNorm();
+  for (const Ball& ball : balls) {
+    const Vec3 m = c0 - ball.centre;
+    const double b = d.dot(m), discriminant = b * b - a * (m.squaredNorm() - ball.radius * ball.radius);
+    if (a == 0 || discriminant <= 0) continue;
+    const double enter = (-b - std::sqrt(discriminant)) / a, leave = (-b + std::sqrt(discriminant)) / a;
+    std::vector<std::array<double, 2>> kept;
+    for (const auto& [lo, hi] : pieces) {
+      if (std::min(hi, enter) > lo) kept.push_back({lo, std::min(hi, enter)});
+      if (hi > std::max(lo, leave)) kept.push_back({std::max(lo, leave), hi});
+    }
+    pieces = std::move(kept);
+  }
+  return pieces;
+}
+
+std::vector<RoundCone> round_cones(const CenterlineGraph& g) {
+  std::vector<int32_t> branch_of(g.edges.size(), -1);
+  for (std::size_t b = 0; b < g.branches.size(); ++b)
+    for (int32_t e : g.branches[b].edges) branch_of[e] = static_cast<int32_t>(b);
+  std::vector<RoundCone> cones(g.edges.size());
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    cones[e] = {g.points[g.edges[e][0]], g.points[g.edges[e][1]], g.end_radius[e][0], g.end_radius[e][1],
+                branch_of[e]};
+  return cones;
+}
+
+// Each cone's box: round each end, the larger of its own radius and `reach` times the cone's larger
+// radius (0 for the cone itself; more to hold the neighbourhood that counts as near it).
+std::vector<Box> boxes(const std::vector<RoundCone>& cones, double reach) {
+  std::vector<Box> out(cones.size());
+  for (std::size_t e = 0; e < cones.size(); ++e) {
+    const RoundCone& k = cones[e];
+    const double r = reach * std::max(k.r0, k.r1);
+    out[e].extend(k.c0 - Vec3::Constant(std::max(k.r0, r)));
+    out[e].extend(k.c0 + Vec3::Constant(std::max(k.r0, r)));
+    out[e].extend(k.c1 - Vec3::Constant(std::max(k.r1, r)));
+    out[e].extend(k.c1 + Vec3::Constant(std::max(k.r1, r)));
+  }
+  return out;
+}
+
+}  // namespace
+
+ConeDistance cone_distance(const RoundCone& k, const Vec3& p) {
+  auto from_sphere = [&](const Vec3& centre, double r) {
+    const Vec3 d = p - centre;
+    const double n = d.norm();
+    return ConeDistance{n - r, r, n > 0 ? Vec3(d / n) : any_perpendicular(k.c1 - k.c0)};
+  };
+  const double length = (k.c1 - k.c0).norm();
+  if (length <= std::abs(k.r0 - k.r1))  // one end sphere holds the other
+    return k.r0 >= k.r1 ? from_sphere(k.c0, k.r0) : from_sphere(k.c1, k.r1);
+  // In the half-plane of p and the axis, with t along the axis from c0 and ρ away from it, the side
+  // of the cone is the segment from r0·n to (L, 0) + r1·n with outward normal n = (sinφ, cosφ).
+  const Vec3 axis = (k.c1 - k.c0) / length;
+  const Vec3 d = p - k.c0;
+  const double t = d.dot(axis);
+  const Vec3 off_axis = d - t * axis;
+  const double rho = off_axis.norm();
+  const double sin_phi = (k.r0 - k.r1) / length;
+  const double cos_phi = std::sqrt(1.0 - sin_phi * sin_phi);
+  const double along = t * cos_phi - rho * sin_phi;  // position along the side, 0 where it leaves sphere 0
+  const double side_length = length * cos_phi;
+  if (along <= 0) return from_sphere(k.c0, k.r0);
+  if (along >= side_length) return from_sphere(k.c1, k.r1);
+  const Vec3 radial = rho > 0 ? Vec3(off_axis / rho) : any_perpendicular(axis);
+  return {t * sin_phi + rho * cos_phi - k.r0, k.radius_at(along / side_length),
+          sin_phi * axis + cos_phi * radial};
+}
+
+std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
+  if (a == 0) return {0.0, e == 0 ? 0.0 : unit(f / e)};
+  const double c = d1.dot(r);
+  if (e == 0) return {unit(-c / a), 0.0};
+  const double b = d1.dot(d2), denominator = a * e - b * b;
+  double s = denominator > 0 ? unit((b * f - c * e) / denominator) : 0.0;  // parallel: any s will do
+  const double t = (b * s + f) / e;
+  if (t < 0) return {unit(-c / a), 0.0};
+  if (t > 1) return {unit((b - c) / a), 1.0};
+  return {s, t};
+}
+
+RoundCones::RoundCones(const CenterlineGraph& g)
+    : graph_(g), cones_(round_cones(g)), tight_(boxes(cones_, 0.0)), near_(boxes(cones_, kNearTube)) {}
+
+ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside) const {
+  ConeDistance best{kInf, 0.0, Vec3::Zero()};
+  int32_t best_cone = -1;
+  // A cone near the last point's is likely near this one: it bounds the search from the start.
+  if (hint != nullptr && *hint >= 0 && *hint < static_cast<int32_t>(cones_.size()))
+    best = cone_distance(cones_[*hint], p), best_cone = *hint;
+  double limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
+  // A cone inside a box is no nearer than the box's signed distance.
+  tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit, [&](int32_t e) {
+    const ConeDistance d = cone_distance(cones_[e], p);
+    if (d.distance < best.distance) best = d, best_cone = e;
+    // Inside one cone is inside the union: the sign is all that is asked.
+    limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
+  });
+  if (hint != nullptr) *hint = best_cone;
+  return best;
+}
+
+bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
+  const std::vector<int32_t> near_p = near_edges(p), near_q = near_edges(q);
+  for (int32_t e : near_p)
+    for (int32_t f : near_q)
+      if (cones_[e].branch != cones_[f].branch && overlap(e, f)) return true;
+  return false;
+}
+
+std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
+  std::vector<int32_t> near;
+  near_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
+              [&](int32_t e) {
+                const RoundCone& k = cones_[e];
+                const double s = closest_parameters(k.c0, k.c1, p, p).first;
+                if ((p - k.point_at(s)).norm() < kNearTube * k.radius_at(s)) near.push_back(e);
+              });
+  return near;
+}
+
+// Whether the tubes of edges e and f (of different branches) overlap away from the joints their
+// branches share: near a shared joint they meet by design, which is no overlap of the input.
+bool RoundCones::overlap(int32_t e, int32_t f) const {
+  const Branch& a = graph_.branches[cones_[e].branch];
+  const Branch& b = graph_.branches[cones_[f].branch];
+  std::vector<Ball> joints;
+  const std::array<int32_t, 2> ends = {a.points.front(), a.points.back()};  // the same point for a ring
+  for (int i = 0; i < (ends[1] == ends[0] ? 1 : 2); ++i)
+    if (ends[i] == b.points.front() || ends[i] == b.points.back())
+      joints.push_back({graph_.points[ends[i]], kJointReach * graph_.radius[ends[i]]});
+  const RoundCone& k = cones_[e];
+  const RoundCone& l = cones_[f];
+  for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))
+    for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
+      const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
+      const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
+      if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t)) return true;
+    }
+  return false;
+}
+
+}  // namespace vesselmesh

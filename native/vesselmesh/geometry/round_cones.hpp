@@ -1,0 +1,62 @@
+#pragma once
+// The input's tubes: every centerline edge as a round cone (spheres of the end radii round its two
+// points and the cone tangent to both), gathered in a bounding-volume hierarchy. Their union is the
+// vessel the file describes: the fit stage pulls the surface into it, and the checker measures radius
+// fidelity against it.
+
+#include <cstdint>
+#include <vector>
+
+#include "vesselmesh/geometry/bvh.hpp"
+#include "vesselmesh/graph/centerline_graph.hpp"
+
+namespace vesselmesh {
+
+/// One centerline edge: spheres of radius r0, r1 round c0, c1 and the cone tangent to both.
+struct RoundCone {
+  Vec3 c0, c1;
+  double r0, r1;
+  int32_t branch;
+  double radius_at(double s) const { return r0 + s * (r1 - r0); }
+  Vec3 point_at(double s) const { return c0 + s * (c1 - c0); }
+};
+
+struct ConeDistance {
+  double distance;  ///< signed: negative inside
+  double radius;    ///< of the sphere of the cone's family (centres on the axis, radii linear) touching
+                    ///< the surface where the point is closest
+  Vec3 direction;   ///< unit, from the closest surface point towards the point when it is outside (the
+                    ///< gradient of the distance)
+};
+
+/// Signed distance from `p` to the surface of round cone `k`.
+ConeDistance cone_distance(const RoundCone& k, const Vec3& p);
+
+/// Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
+std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
+
+class RoundCones {
+ public:
+  explicit RoundCones(const CenterlineGraph& g);
+
+  /// The signed distance from `p` to the union of the cones (the smallest over the cones, exact
+  /// outside the union), with the nearest cone's local radius and direction; distance +inf without cones.
+  /// `hint`, when given, is a cone to try first (the nearest to a point close by: much faster for a
+  /// sequence of nearby points), and receives the nearest cone. Without `exact_inside`, the search
+  /// stops at the first cone that holds `p`: the distance is then only known to be negative.
+  ConeDistance nearest(const Vec3& p, int32_t* hint = nullptr, bool exact_inside = true) const;
+
+  /// True when `p` and `q` are near edges of two different branches whose tubes overlap.
+  bool in_overlapping_tubes(const Vec3& p, const Vec3& q) const;
+
+ private:
+  std::vector<int32_t> near_edges(const Vec3& p) const;
+  bool overlap(int32_t e, int32_t f) const;
+
+  const CenterlineGraph& graph_;
+  std::vector<RoundCone> cones_;
+  Bvh tight_;  ///< over each cone's box, for nearest()
+  Bvh near_;   ///< over each cone's box widened to what counts as near it, for near_edges()
+};
+
+}  // namespace vesselmesh
