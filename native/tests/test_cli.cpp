@@ -170,6 +170,23 @@ TEST(Cli, MeshMethodsGiveFewerTrianglesThanUniformAndReportTheirTagging) {
   EXPECT_EQ(triangles("--method curvature --threshold 0"), uniform);
 }
 
+TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
+  const std::string in = vesselmesh::test::test_data("bifurcation.swc");
+  const auto stats = [&](const std::string& options) {
+    const std::string file = testing::TempDir() + "stats.json";
+    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' " + options +
+                               " --stats-json '" + file + "'");
+    EXPECT_EQ(run.status, 0) << options << ": " << run.output;
+    std::ifstream stream(file);
+    return nlohmann::json::parse(stream);
+  };
+  const nlohmann::json fitted = stats(""), plain = stats("--no-fit");
+  EXPECT_GT(fitted["fitted_vertices"].get<int64_t>(), 0);
+  EXPECT_EQ(fitted["stages"].back()["stage"], "fit");
+  EXPECT_EQ(plain["fitted_vertices"].get<int64_t>(), 0);
+  EXPECT_EQ(plain["stages"].back()["stage"], "subdivide");
+}
+
 TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
   const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",

@@ -112,6 +112,15 @@ def test_mesh_of_a_loop_has_genus_one(project_data):
     assert report["topology"]["genus"] == 1
 
 
+def test_fit_brings_the_crotch_onto_the_tubes_and_can_be_left_out(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    fitted, plain = vm.mesh(graph, levels=2), vm.mesh(graph, levels=2, fit=False)
+    assert fitted["stats"]["fitted_vertices"] > 0 and plain["stats"]["fitted_vertices"] == 0
+    assert np.array_equal(fitted["faces"], plain["faces"])
+    furthest_out = [np.nanmax(vm.radius_error(s["vertices"], s["faces"], graph)) for s in (fitted, plain)]
+    assert furthest_out[0] <= 0.031 < furthest_out[1]
+
+
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
                                     dict(angle=-1.0)])

@@ -123,12 +123,13 @@ ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside
     best = cone_distance(cones_[*hint], p), best_cone = *hint;
   double limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
   // A cone inside a box is no nearer than the box's signed distance.
-  tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit, [&](int32_t e) {
-    const ConeDistance d = cone_distance(cones_[e], p);
-    if (d.distance < best.distance) best = d, best_cone = e;
-    // Inside one cone is inside the union: the sign is all that is asked.
-    limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
-  });
+  tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
+                [&](int32_t e) {
+                  const ConeDistance d = cone_distance(cones_[e], p);
+                  if (d.distance < best.distance) best = d, best_cone = e;
+                  // Inside one cone is inside the union: the sign is all that is asked.
+                  limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
+                });
   if (hint != nullptr) *hint = best_cone;
   return best;
 }
@@ -144,11 +145,11 @@ bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
 std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
   std::vector<int32_t> near;
   near_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
-              [&](int32_t e) {
-                const RoundCone& k = cones_[e];
-                const double s = closest_parameters(k.c0, k.c1, p, p).first;
-                if ((p - k.point_at(s)).norm() < kNearTube * k.radius_at(s)) near.push_back(e);
-              });
+               [&](int32_t e) {
+                 const RoundCone& k = cones_[e];
+                 const double s = closest_parameters(k.c0, k.c1, p, p).first;
+                 if ((p - k.point_at(s)).norm() < kNearTube * k.radius_at(s)) near.push_back(e);
+               });
   return near;
 }
 
