@@ -1,4 +1,5 @@
 """File > Import: every format gives an editable centerline object and a closed, coloured surface."""
+import json
 import sys
 
 import bpy
@@ -63,6 +64,13 @@ def _points(obj):
     points = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
     obj.data.vertices.foreach_get("co", points)
     return points.reshape(-1, 3)
+
+
+def test_fit_setting_reaches_the_core_and_is_kept_for_regeneration(project_data):
+    centerline, fitted = import_file(project_data / "bifurcation.swc")
+    assert centerline.vesselmesh.settings.fit and json.loads(fitted.vesselmesh.stats)["fitted_vertices"] > 0
+    centerline, plain = import_file(project_data / "bifurcation.swc", fit=False)
+    assert not centerline.vesselmesh.settings.fit and json.loads(plain.vesselmesh.stats)["fitted_vertices"] == 0
 
 
 def test_default_settings_are_the_cores_defaults(project_data):

@@ -18,10 +18,11 @@ Pictures (640 x 400):
     level1.png        level 1, wireframe over solid
     level2.png        level 2, wireframe over solid
     limit_smooth.png  level 2, smooth shaded
+    limit_unfitted.png  the same without the fit stage (`--no-fit`): the Loop surface webs the crotch
     loop.png          ring_with_tail.vtk at level 2 (genus 1)
     network.png       `synth --sections 3000 --loops 2 --seed 1` at level 2
 
-The first five share one camera.
+The first six share one camera.
 """
 
 import math
@@ -54,13 +55,14 @@ def make_meshes(cli, tmp):
     bifurcation = os.path.join(DATA, "bifurcation.swc")
     network = os.path.join(tmp, "network.vtk")
     run("synth", "-o", network, "--sections", "3000", "--loops", "2", "--seed", "1")
-    jobs = {f"bifurcation{n}": (bifurcation, n) for n in (0, 1, 2)}
-    jobs["loop"] = (os.path.join(DATA, "ring_with_tail.vtk"), 2)
-    jobs["network"] = (network, 2)
+    jobs = {f"bifurcation{n}": (bifurcation, n, []) for n in (0, 1, 2)}
+    jobs["unfitted"] = (bifurcation, 2, ["--no-fit"])
+    jobs["loop"] = (os.path.join(DATA, "ring_with_tail.vtk"), 2, [])
+    jobs["network"] = (network, 2, [])
     paths = {}
-    for name, (source, levels) in jobs.items():
+    for name, (source, levels, options) in jobs.items():
         paths[name] = os.path.join(tmp, name + ".ply")
-        run("mesh", source, "-o", paths[name], "--levels", str(levels))
+        run("mesh", source, "-o", paths[name], "--levels", str(levels), *options)
     return paths
 
 
@@ -209,6 +211,7 @@ def main():
         ply = make_meshes(cli, tmp)
         # Level 0 flat shaded, to show its facets; levels 1 and 2 smooth shaded under the wire.
         levels = [import_ply(ply[f"bifurcation{n}"], smooth=n > 0) for n in (0, 1, 2)]
+        unfitted = import_ply(ply["unfitted"], smooth=True)
         loop = import_ply(ply["loop"], smooth=True)
         network = import_ply(ply["network"], smooth=True)
     size = max(levels[0].dimensions)
@@ -226,6 +229,7 @@ def main():
     render(scene, out("level1"), [levels[1], wires[1]])
     render(scene, out("level2"), [levels[2], wires[2]])
     render(scene, out("limit_smooth"), [levels[2]])
+    render(scene, out("limit_unfitted"), [unfitted])
 
     aim_camera(scene, loop, direction=(0.3, 0.8, -1.0), up=(0.0, 0.0, 1.0))
     render(scene, out("loop"), [loop])

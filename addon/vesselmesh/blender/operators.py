@@ -273,6 +273,7 @@ def draw_settings(layout, settings):
     col.prop(settings, "alpha")
     col.prop(settings, "beta")
     col.prop(settings, "caps")
+    col.prop(settings, "fit")
     col.prop(settings, "default_radius")
     col.prop(settings, "curvature")
 

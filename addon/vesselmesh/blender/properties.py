@@ -49,6 +49,9 @@ class MeshSettings:
                          description="Section spacing, in diameters on straight parts")
     beta: FloatProperty(name="Bend β", default=4.0, min=0.0, soft_max=20.0,
                         description="How much sections crowd where the centerline bends")
+    fit: BoolProperty(name="Fit to Tubes", default=True,
+                      description="Pull the smooth surface into the centerline's tubes where it would web a "
+                                  "bifurcation's crotch or fill a sharp bend")
     caps: EnumProperty(name="Caps", default="flat",
                        items=[("flat", "Flat", "Close the vessel ends"), ("open", "Open", "Leave the ends open")])
     default_radius: FloatProperty(name="Default Radius", default=0.1, min=1e-9, soft_max=10.0, subtype="DISTANCE",

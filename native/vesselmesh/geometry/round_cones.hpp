@@ -32,9 +32,6 @@ struct ConeDistance {
 /// Signed distance from `p` to the surface of round cone `k`.
 ConeDistance cone_distance(const RoundCone& k, const Vec3& p);
 
-/// Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
-std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
-
 class RoundCones {
  public:
   explicit RoundCones(const CenterlineGraph& g);
