@@ -68,9 +68,11 @@ def _points(obj):
 
 def test_fit_setting_reaches_the_core_and_is_kept_for_regeneration(project_data):
     centerline, fitted = import_file(project_data / "bifurcation.swc")
-    assert centerline.vesselmesh.settings.fit and json.loads(fitted.vesselmesh.stats)["fitted_vertices"] > 0
-    centerline, plain = import_file(project_data / "bifurcation.swc", fit=False)
-    assert not centerline.vesselmesh.settings.fit and json.loads(plain.vesselmesh.stats)["fitted_vertices"] == 0
+    assert centerline.vesselmesh.settings.fit == "onto"
+    assert json.loads(fitted.vesselmesh.stats)["fitted_vertices"] > 0
+    centerline, plain = import_file(project_data / "bifurcation.swc", fit="none")
+    assert centerline.vesselmesh.settings.fit == "none"
+    assert json.loads(plain.vesselmesh.stats)["fitted_vertices"] == 0
 
 
 def test_default_settings_are_the_cores_defaults(project_data):

@@ -2,7 +2,7 @@
 //   vesselmesh info FILE [--json] [--radius-array NAME]
 //   vesselmesh synth -o FILE --sections N [--loops K] [--seed S] [--binary]
 //   vesselmesh mesh IN -o OUT.{ply,obj,stl} [--levels N] [--sampling ...] [--alpha A] [--beta B]
-//                   [--caps flat|open] [--stats-json FILE] [--no-fit] [--curvature]
+//                   [--caps flat|open] [--fit onto|inward|none] [--stats-json FILE] [--curvature]
 //   vesselmesh check MESH [--centerline IN] [--json]
 #include <CLI/CLI.hpp>
 
@@ -119,8 +119,9 @@ int main(int argc, char** argv) {
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
       ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");
-  mesh->add_flag("!--no-fit", mesh_options.fit,
-                 "leave the Loop surface where it bridges crotches and bends outside the input's tubes");
+  mesh->add_option("--fit", mesh_options.fit,
+                   "which vertices come onto the input's tubes: all (onto), those outside (inward), none")
+      ->transform(CLI::CheckedTransformer(fit_names()));
   mesh->add_flag("--curvature", mesh_options.curvature,
                  "estimate per-vertex curvature (2-ring fit); PLY gets k1, k2, mean, gaussian, rms");
   mesh->add_option("--radius-array", radius_array, "name of the array or column holding the radius");

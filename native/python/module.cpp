@@ -218,9 +218,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
          const std::string& caps, bool curvature, const std::string& method, int uniform_levels, double threshold,
-         const std::string& measure, double angle, bool fit) {
+         const std::string& measure, double angle, const std::string& fit) {
         MeshOptions o;
-        o.fit = fit;
+        o.fit = choice("fit", fit, fit_names());
         o.subdivision.levels = levels;
         o.subdivision.method = choice("method", method, refinement_names());
         o.subdivision.uniform_levels = uniform_levels;
@@ -249,14 +249,14 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
-      py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("fit") = true,
+      py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("fit") = "onto",
       "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
       "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
       "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or 'dihedral';\n"
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
-      "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle; fit=False\n"
-      "leaves the Loop surface where it bridges crotches and bends outside the input's tubes.");
+      "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle. fit: which\n"
+      "vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside them) or 'none'.");
 
   m.def(
       "check",

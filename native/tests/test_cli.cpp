@@ -180,7 +180,9 @@ TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
     std::ifstream stream(file);
     return nlohmann::json::parse(stream);
   };
-  const nlohmann::json fitted = stats(""), plain = stats("--no-fit");
+  const nlohmann::json fitted = stats(""), plain = stats("--fit none");
+  EXPECT_GT(stats("--fit inward")["fitted_vertices"].get<int64_t>(), 0);
+  EXPECT_LT(stats("--fit inward")["fitted_vertices"].get<int64_t>(), fitted["fitted_vertices"].get<int64_t>());
   EXPECT_GT(fitted["fitted_vertices"].get<int64_t>(), 0);
   EXPECT_EQ(fitted["stages"].back()["stage"], "fit");
   EXPECT_EQ(plain["fitted_vertices"].get<int64_t>(), 0);
@@ -190,7 +192,7 @@ TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
 TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
   const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",
-                              "--uniform-levels -1"}) {
+                              "--uniform-levels -1", "--fit outward"}) {
     const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' " + options);
     EXPECT_NE(run.status, 0) << options;
   }

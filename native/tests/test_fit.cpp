@@ -1,6 +1,6 @@
-// The fit stage: vertices outside the input's tubes come onto them (to within τ of the local radius),
-// vertices inside stay, and no move folds a triangle or carries it through another part of the
-// surface; and the round cones' distance and direction that it relies on.
+// The fit stage: vertices come onto the input's tubes (to within τ of the local radius) from outside and,
+// unless told to move inward only, from inside; no move folds a triangle or carries it through another
+// part of the surface; and the round cones' distance and direction that it relies on.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -20,12 +20,16 @@ namespace {
 TriMesh limit_surface(const CenterlineGraph& g) {
   MeshOptions o;
   o.subdivision.method = Refinement::uniform;
-  o.fit = false;
+  o.fit = Fit::none;
   return mesh_centerline(g, o).mesh;
 }
 
 double largest_error(const TriMesh& mesh, const CenterlineGraph& g) {
   return radius_fidelity(mesh, g).relative_error.max;
+}
+
+double smallest_error(const TriMesh& mesh, const CenterlineGraph& g) {
+  return radius_fidelity(mesh, g).relative_error.min;
 }
 
 }  // namespace
@@ -47,7 +51,8 @@ TEST(RoundCones, DirectionIsTheGradientOfTheDistanceAtEveryScale) {
           gradient[a] = (cone_distance(k, p + h * Vec3::Unit(a)).distance -
                          cone_distance(k, p - h * Vec3::Unit(a)).distance) /
                         (2 * h);
-        EXPECT_NEAR((d.direction - gradient).norm(), 0.0, 1e-5) << "scale " << scale << " at " << p.transpose();
+        EXPECT_NEAR((d.direction - gradient).norm(), 0.0, 1e-5)
+            << "scale " << scale << " at " << p.transpose();
         EXPECT_NEAR(d.direction.norm(), 1.0, 1e-12);
         // The closest surface point is the distance away along the direction.
         EXPECT_NEAR(cone_distance(k, p - d.distance * d.direction).distance, 0.0, 1e-9 * scale);
@@ -58,21 +63,38 @@ TEST(RoundCones, DirectionIsTheGradientOfTheDistanceAtEveryScale) {
 TEST(Fit, CrotchOfABifurcationComesOntoTheTubesAtEveryScale) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::bifurcation(scale));
-    TriMesh mesh = limit_surface(g);
-    // The Loop surface webs the crotch between the two children, far outside their tubes.
-    EXPECT_GT(largest_error(mesh, g), 0.3) << "scale " << scale;
-    const FitStats stats = fit_to_tubes(mesh, g);
-    EXPECT_GT(stats.moved, 0);
-    EXPECT_EQ(stats.held_back, 0) << "scale " << scale;
-    EXPECT_LE(largest_error(mesh, g), 0.0301) << "scale " << scale;
+    for (Fit fit : {Fit::onto, Fit::inward}) {
+      TriMesh mesh = limit_surface(g);
+      // The Loop surface webs the crotch between the two children, far outside their tubes.
+      EXPECT_GT(largest_error(mesh, g), 0.3) << "scale " << scale;
+      const FitStats stats = fit_to_tubes(mesh, g, fit);
+      EXPECT_GT(stats.moved, 0);
+      EXPECT_EQ(stats.held_back, 0) << "scale " << scale;
+      EXPECT_LE(largest_error(mesh, g), 0.0301) << "scale " << scale;
+    }
   }
 }
 
-TEST(Fit, VerticesInsideTheTubesStayWhereTheyAre) {
+TEST(Fit, CornerOfACoarseZigzagComesOutOntoItsSphereUnlessOnlyInward) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    // Points four radii apart turning by 60°: the smooth surface cuts the corners' spheres.
+    const CenterlineGraph g = build_graph(fixtures::zigzag(60, 4, scale));
+    const TriMesh before = limit_surface(g);
+    EXPECT_LT(smallest_error(before, g), -0.1) << "scale " << scale;
+    TriMesh inward = before, onto = before;
+    fit_to_tubes(inward, g, Fit::inward);
+    fit_to_tubes(onto, g, Fit::onto);
+    EXPECT_EQ(smallest_error(inward, g), smallest_error(before, g));
+    EXPECT_GE(smallest_error(onto, g), -0.0301) << "scale " << scale;
+    EXPECT_LE(largest_error(onto, g), 0.0301) << "scale " << scale;
+  }
+}
+
+TEST(Fit, InwardLeavesTheVerticesInsideTheTubesWhereTheyAre) {
   const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
   const TriMesh before = limit_surface(g);
   TriMesh after = before;
-  fit_to_tubes(after, g);
+  fit_to_tubes(after, g, Fit::inward);
   const FidelityReport f = radius_fidelity(before, g);
   int inside = 0, outside_moved = 0;
   for (std::size_t v = 0; v < before.vertices.size(); ++v) {
@@ -88,6 +110,27 @@ TEST(Fit, VerticesInsideTheTubesStayWhereTheyAre) {
   EXPECT_GT(outside_moved, 100);
 }
 
+TEST(Fit, NoVertexGoesOutThroughAnotherTube) {
+  // Two tubes crossing at right angles: vertices of one inside the other stay there, for going out onto
+  // the union's surface would take them through the other tube.
+  CenterlineData d;
+  d.points = {Vec3(-10, 0, 0), Vec3(10, 0, 0), Vec3(0, -10, 0.5), Vec3(0, 10, 0.5)};
+  d.radius = {1, 1, 1, 1};
+  d.edges = {{0, 1}, {2, 3}};
+  const CenterlineGraph g = build_graph(d);
+  const TriMesh before = limit_surface(g);
+  TriMesh after = before;
+  fit_to_tubes(after, g, Fit::onto);
+  const RoundCones cones(g);
+  int deep = 0;
+  for (std::size_t v = 0; v < before.vertices.size(); ++v)
+    if (cones.nearest(before.vertices[v]).distance < -0.5) {  // well inside the other tube
+      ++deep;
+      EXPECT_EQ(after.vertices[v], before.vertices[v]) << "vertex " << v;
+    }
+  EXPECT_GT(deep, 10);
+}
+
 TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) {
   // Two sheets above a tube of radius 0.5 along x, at heights 1 and 0.75: pulled straight down onto the
   // tube, the upper one would pass through the lower one.
@@ -101,7 +144,8 @@ TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) 
   for (double height : {1.0, 0.75}) {
     const int32_t first = static_cast<int32_t>(mesh.vertices.size());
     for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) mesh.vertices.push_back(Vec3(-1 + 2.0 * i / n, -0.2 + 0.4 * j / n, height));
+      for (int i = 0; i <= n; ++i)
+        mesh.vertices.push_back(Vec3(-1 + 2.0 * i / n, -0.2 + 0.4 * j / n, height));
     for (Tri t : surfaces::grid_faces(n, n)) mesh.faces.push_back({t[0] + first, t[1] + first, t[2] + first});
   }
   ASSERT_EQ(find_self_intersections(mesh).pairs, 0);
@@ -115,7 +159,7 @@ TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) 
   }
   ASSERT_GT(find_self_intersections(naive).pairs, 0);
 
-  const FitStats stats = fit_to_tubes(mesh, g);
+  const FitStats stats = fit_to_tubes(mesh, g, Fit::onto);
   EXPECT_GT(stats.held_back, 0);
   EXPECT_EQ(find_self_intersections(mesh).pairs, 0);
 }
@@ -125,7 +169,7 @@ TEST(Fit, StageIsPartOfThePipelineAndCanBeLeftOut) {
   MeshOptions o;
   o.subdivision.method = Refinement::uniform;
   const MeshResult with = mesh_centerline(g, o);
-  o.fit = false;
+  o.fit = Fit::none;
   const MeshResult without = mesh_centerline(g, o);
   EXPECT_EQ(with.stages[3].stage, "fit");
   EXPECT_GT(with.fitted_vertices, 0);

@@ -20,6 +20,11 @@ inline const std::map<std::string, Caps>& caps_names() {
   return names;
 }
 
+inline const std::map<std::string, Fit>& fit_names() {
+  static const std::map<std::string, Fit> names{{"onto", Fit::onto}, {"inward", Fit::inward}, {"none", Fit::none}};
+  return names;
+}
+
 inline const std::map<std::string, Refinement>& refinement_names() {
   static const std::map<std::string, Refinement> names{
       {"curvature", Refinement::curvature}, {"uniform", Refinement::uniform}, {"dihedral", Refinement::dihedral}};

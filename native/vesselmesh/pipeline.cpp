@@ -7,7 +7,6 @@
 #include <string>
 
 #include "vesselmesh/curvature/curvature.hpp"
-#include "vesselmesh/fit/fit.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -50,9 +49,9 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.tagged = std::move(subdivided.tagged);
   record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
-  if (options.fit) {
+  if (options.fit != Fit::none) {
     start = Clock::now();
-    const FitStats fit = fit_to_tubes(result.mesh, graph);
+    const FitStats fit = fit_to_tubes(result.mesh, graph, options.fit);
     result.fitted_vertices = fit.moved;
     record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));

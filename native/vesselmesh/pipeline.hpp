@@ -1,12 +1,13 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
 //   graph → sample → frames → tile (base mesh) → triangulate → subdivide (uniform or adaptive, onto the
-//   Loop limit surface) → fit (into the input's tubes) [→ curvature]
+//   Loop limit surface) → fit (onto the input's tubes) [→ curvature]
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>
 #include <vector>
 
+#include "vesselmesh/fit/fit.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/tri_mesh.hpp"
 #include "vesselmesh/subdivide/adaptive.hpp"
@@ -18,7 +19,7 @@ struct MeshOptions {
   SamplingOptions sampling;
   Caps caps = Caps::flat;
   SubdivisionOptions subdivision;
-  bool fit = true;         ///< pull the vertices outside the input's tubes onto their surface (fit/fit.hpp)
+  Fit fit = Fit::onto;     ///< which vertices come onto the input's tubes (fit/fit.hpp)
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
 };
 

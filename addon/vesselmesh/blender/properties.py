@@ -49,9 +49,13 @@ class MeshSettings:
                          description="Section spacing, in diameters on straight parts")
     beta: FloatProperty(name="Bend β", default=4.0, min=0.0, soft_max=20.0,
                         description="How much sections crowd where the centerline bends")
-    fit: BoolProperty(name="Fit to Tubes", default=True,
-                      description="Pull the smooth surface into the centerline's tubes where it would web a "
-                                  "bifurcation's crotch or fill a sharp bend")
+    fit: EnumProperty(
+        name="Fit", default="onto", description="Bring the smooth surface onto the centerline's tubes",
+        items=[("onto", "Onto Tubes", "Every vertex within 3 % of the radius the file gives: crotches and bends "
+                                      "as the centerline has them"),
+               ("inward", "Inward Only", "Only where the smooth surface lies outside the tubes (webbed crotches, "
+                                         "filled bends); elsewhere it keeps its rounder shape"),
+               ("none", "None", "The smooth Loop surface as it is")])
     caps: EnumProperty(name="Caps", default="flat",
                        items=[("flat", "Flat", "Close the vessel ends"), ("open", "Open", "Leave the ends open")])
     default_radius: FloatProperty(name="Default Radius", default=0.1, min=1e-9, soft_max=10.0, subtype="DISTANCE",

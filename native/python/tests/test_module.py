@@ -114,7 +114,7 @@ def test_mesh_of_a_loop_has_genus_one(project_data):
 
 def test_fit_brings_the_crotch_onto_the_tubes_and_can_be_left_out(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
-    fitted, plain = vm.mesh(graph, levels=2), vm.mesh(graph, levels=2, fit=False)
+    fitted, plain = vm.mesh(graph, levels=2), vm.mesh(graph, levels=2, fit="none")
     assert fitted["stats"]["fitted_vertices"] > 0 and plain["stats"]["fitted_vertices"] == 0
     assert np.array_equal(fitted["faces"], plain["faces"])
     furthest_out = [np.nanmax(vm.radius_error(s["vertices"], s["faces"], graph)) for s in (fitted, plain)]
@@ -123,7 +123,7 @@ def test_fit_brings_the_crotch_onto_the_tubes_and_can_be_left_out(project_data):
 
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
-                                    dict(angle=-1.0)])
+                                    dict(angle=-1.0), dict(fit="outward")])
 def test_mesh_rejects_unknown_options(project_data, kwargs):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     with pytest.raises((ValueError, vm.InputError)):

@@ -65,55 +65,6 @@ Distribution distribution(std::vector<double> values) {
   return d;
 }
 
-// --- terminal caps --------------------------------------------------------------------------------
-
-/// The end of a terminal: its centre, the axis pointing out of the tube, and the radius there.
-struct Cap {
-  Vec3 centre, axis;
-  double radius;
-};
-
-std::vector<Cap> terminal_caps(const CenterlineGraph& g) {
-  std::vector<Cap> caps;
-  for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v) {
-    if (g.degree(v) != 1) continue;
-    const int32_t e = g.incident[g.offsets[v]];
-    const Vec3 axis = (g.points[v] - g.points[g.other(e, v)]).normalized();
-    caps.push_back({g.points[v], axis, g.end_radius[e][g.edges[e][0] == v ? 0 : 1]});
-  }
-  return caps;
-}
-
-std::vector<Box> cap_boxes(const std::vector<Cap>& caps) {
-  std::vector<Box> boxes(caps.size());
-  for (std::size_t i = 0; i < caps.size(); ++i) {
-    boxes[i].extend(caps[i].centre - Vec3::Constant(2 * caps[i].radius));
-    boxes[i].extend(caps[i].centre + Vec3::Constant(2 * caps[i].radius));
-  }
-  return boxes;
-}
-
-class TerminalCaps {
- public:
-  explicit TerminalCaps(const CenterlineGraph& g) : caps_(terminal_caps(g)), bvh_(cap_boxes(caps_)) {}
-
-  /// Within 2 radii of a terminal, and less than a radius behind its section (or beyond it).
-  bool contain(const Vec3& p) const {
-    bool inside = false;
-    bvh_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
-                [&](int32_t i) {
-                  const Vec3 d = p - caps_[i].centre;
-                  inside =
-                      inside || (d.norm() < 2 * caps_[i].radius && d.dot(caps_[i].axis) > -caps_[i].radius);
-                });
-    return inside;
-  }
-
- private:
-  std::vector<Cap> caps_;
-  Bvh bvh_;
-};
-
 nlohmann::ordered_json distribution_json(const Distribution& d) {
   nlohmann::ordered_json j;
   j["min"] = d.min;
@@ -276,11 +227,10 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   FidelityReport r;
   if (centerline.edges.empty()) return r;
   const RoundCones cones(centerline);
-  const TerminalCaps caps(centerline);
   std::vector<double> signed_error, abs_error;
   r.per_vertex.assign(mesh.vertices.size(), std::numeric_limits<float>::quiet_NaN());
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    if (caps.contain(mesh.vertices[v])) {
+    if (cones.near_cap(mesh.vertices[v])) {
       ++r.excluded_cap_vertices;
       continue;
     }

@@ -15,14 +15,18 @@ namespace vesselmesh {
 
 namespace {
 
-/// τ: how far outside the tubes, in local radii, a vertex far outside them is left (see closest_moves).
+/// τ: how far from the tubes' surface, in local radii, a vertex far from it is left (see fit_to_tubes).
 constexpr double kKeep = 0.03;
+/// Vertices closer to the tubes' surface than this, in local radii, stay: their move, (d − τr·tanh(d/τr)),
+/// would be below 0.2 % of the radius.
+constexpr double kLeast = 0.02;
 /// A triangle whose normal turns further than this (cosine: a right angle) has folded over. The sides of a
 /// crotch's crease turn by up to about 60° from the web they come from.
 constexpr double kTurnCosine = 0.0;
-/// Moves longer than this, in local radii, can carry a triangle through another part of the surface
-/// (another vessel passing close by); shorter ones stay within the surface's own wobble.
-constexpr double kLongMove = 0.2;
+/// A move can carry a triangle through another part of the surface (a neighbour, or another vessel
+/// passing close by) once it is longer than this share of the vertex's shortest edge, or of the local
+/// radius; shorter moves only bend the triangles round it, which the fold test watches.
+constexpr double kLongMove = 0.5;
 /// A move that folds or crosses is halved, and dropped once it has been cut this many times.
 constexpr int kHalvings = 6;
 
@@ -32,23 +36,31 @@ Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
 
 Triangle corners(const std::vector<Vec3>& v, const Tri& t) { return {v[t[0]], v[t[1]], v[t[2]]}; }
 
-/// Each vertex's way onto the union of the cones when it lies outside (zero otherwise), and the local radius.
-void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, std::vector<Vec3>& move,
-                   std::vector<double>& radius) {
+/// Each vertex's way towards the union of the cones (zero for those `fit` leaves), and the local radius.
+void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
+                   std::vector<Vec3>& move, std::vector<double>& radius) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
       const Vec3& p = vertices[v];
-      const ConeDistance d = cones.nearest(p, &hint, false);
+      ConeDistance d = cones.nearest(p, &hint, false);  // inside: only the sign
       radius[v] = d.radius;
-      if (!(d.distance > 1e-9 * d.radius) || !std::isfinite(d.distance)) continue;
-      // Left as far outside as tanh(d / τr)·τr: a ripple much smaller than τr (the Loop surface's own,
-      // about 1 % round a tube) keeps its smooth shape, a web or a filled crease comes within τr.
+      if (d.distance < 0) {
+        if (fit != Fit::onto) continue;
+        // Inside, the cone that holds the vertex deepest is the one it goes out of.
+        d = cones.deepest(p, kLeast * d.radius);
+        // Inside another branch's tube too, a vertex would go out through it.
+        if (!std::isfinite(d.distance) || cones.inside_other_branch(p, d.branch)) continue;
+        radius[v] = d.radius;
+      }
+      if (!std::isfinite(d.distance) || std::abs(d.distance) <= kLeast * d.radius) continue;
+      if (cones.near_cap(p)) continue;  // a capped end is no part of the round tubes
       const double reach = kKeep * d.radius;
-      Vec3 step = -(d.distance - reach * std::tanh(d.distance / reach)) * d.direction;
-      // The closest point on one cone can lie inside another (at a crotch both are near): stop where the
-      // way there enters the union.
-      if (cones.nearest(p + step, &hint, false).distance < -1e-6 * d.radius) {
+      const double keep = reach * std::tanh(d.distance / reach);  // where the vertex is left
+      Vec3 step = -(d.distance - keep) * d.direction;
+      if (d.distance > 0 && cones.nearest(p + step, &hint, false).distance < -1e-6 * d.radius) {
+        // The closest point on one cone can lie inside another (at a crotch both are near): stop where
+        // the way there enters the union.
         double outside = 0, inside = 1;
         for (int i = 0; i < 20; ++i) {
           const double mid = 0.5 * (outside + inside);
@@ -59,6 +71,12 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, s
       move[v] = step;
     }
   });
+}
+
+bool share_corner(const Tri& a, const Tri& b) {
+  for (int32_t v : a)
+    if (v == b[0] || v == b[1] || v == b[2]) return true;
+  return false;
 }
 
 bool touches(const Tri& t, const std::vector<char>& dirty) {
@@ -80,12 +98,6 @@ std::vector<int32_t> folded(const TriMesh& mesh, const std::vector<Vec3>& moved,
   return out;
 }
 
-bool share_corner(const Tri& a, const Tri& b) {
-  for (int32_t v : a)
-    if (v == b[0] || v == b[1] || v == b[2]) return true;
-  return false;
-}
-
 /// Pairs of a triangle with a long move and another triangle, not its neighbour (a neighbour would fold
 /// first), that the move may carry it through: their boxes, each swept from the triangle's place before the
 /// fit to after it (every halved move lies in between), overlap, and they did not cross before the fit
@@ -99,6 +111,8 @@ std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, con
     for (int32_t v : t) box.extend(mesh.vertices[v]), box.extend(moved[v]);
     return box;
   };
+  std::vector<char> is_long(mesh.faces.size(), 0);
+  for (int32_t f : long_faces) is_long[f] = 1;
   std::vector<Box> boxes(long_faces.size());
   Box all;
   for (std::size_t i = 0; i < long_faces.size(); ++i) all.extend(boxes[i] = swept(mesh.faces[long_faces[i]]));
@@ -112,10 +126,14 @@ std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, con
       if (!box.overlaps(all)) continue;
       bvh.search([&](const Box& b) { return b.overlaps(box) ? 0.0 : 1.0; }, 0.0,
                  [&](int32_t i) {
-                   const Tri& tf = mesh.faces[long_faces[i]];
-                   if (!share_corner(tf, tg) &&
+                   const int32_t f = long_faces[i];
+                   if (f == static_cast<int32_t>(g) || (is_long[g] && static_cast<int32_t>(g) < f)) return;
+                   // Neighbours do not cross in the surface as subdivided; others may where input tubes
+                   // overlap, which the fit does not answer for.
+                   const Tri& tf = mesh.faces[f];
+                   if (share_corner(tf, tg) ||
                        !triangle_interiors_meet(corners(mesh.vertices, tf), corners(mesh.vertices, tg)))
-                     found.push_back({long_faces[i], static_cast<int32_t>(g)});
+                     found.push_back({f, static_cast<int32_t>(g)});
                  });
     }
     const std::lock_guard<std::mutex> guard(lock);
@@ -129,8 +147,14 @@ std::vector<int32_t> crossing(const TriMesh& mesh, const std::vector<Vec3>& move
                               const std::vector<char>& dirty,
                               const std::vector<std::array<int32_t, 2>>& candidates) {
   std::vector<int32_t> out;
+  auto box = [&](const Tri& t) {
+    Box b;
+    for (int32_t v : t) b.extend(moved[v]);
+    return b;
+  };
   for (const auto& [f, g] : candidates)
     if ((touches(mesh.faces[f], dirty) || touches(mesh.faces[g], dirty)) &&
+        box(mesh.faces[f]).overlaps(box(mesh.faces[g])) &&
         triangle_interiors_meet(corners(moved, mesh.faces[f]), corners(moved, mesh.faces[g]))) {
       out.insert(out.end(), mesh.faces[f].begin(), mesh.faces[f].end());
       out.insert(out.end(), mesh.faces[g].begin(), mesh.faces[g].end());
@@ -140,26 +164,32 @@ std::vector<int32_t> crossing(const TriMesh& mesh, const std::vector<Vec3>& move
 
 }  // namespace
 
-FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph) {
+FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   FitStats stats;
-  if (graph.edges.empty()) return stats;
+  if (graph.edges.empty() || fit == Fit::none) return stats;
   const std::size_t n = mesh.vertices.size();
   std::vector<Vec3> move(n, Vec3::Zero());
   std::vector<double> radius(n, 0.0);
-  closest_moves(mesh.vertices, RoundCones(graph), move, radius);
+  closest_moves(mesh.vertices, RoundCones(graph), fit, move, radius);
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
-  auto moves = [&](const Tri& t, double least) {
-    return std::any_of(t.begin(), t.end(), [&](int32_t v) { return move[v].norm() > least * radius[v]; });
-  };
+  std::vector<double> reach(n);  // how far a vertex moves before its move is long
+  for (std::size_t v = 0; v < n; ++v) reach[v] = kLongMove * radius[v];
+  for (const Tri& t : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      const double edge = kLongMove * (mesh.vertices[t[k]] - mesh.vertices[t[(k + 1) % 3]]).norm();
+      reach[t[k]] = std::min(reach[t[k]], edge);
+      reach[t[(k + 1) % 3]] = std::min(reach[t[(k + 1) % 3]], edge);
+    }
   std::vector<int32_t> faces, long_faces;
   std::vector<Vec3> before;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Tri& t = mesh.faces[f];
-    if (!moves(t, 0)) continue;
+    if (std::all_of(t.begin(), t.end(), [&](int32_t v) { return move[v] == Vec3::Zero(); })) continue;
     faces.push_back(static_cast<int32_t>(f));
     before.push_back(face_normal(mesh.vertices, t));
-    if (moves(t, kLongMove)) long_faces.push_back(static_cast<int32_t>(f));
+    if (std::any_of(t.begin(), t.end(), [&](int32_t v) { return move[v].norm() > reach[v]; }))
+      long_faces.push_back(static_cast<int32_t>(f));
   }
 
   std::vector<Vec3> moved = mesh.vertices;

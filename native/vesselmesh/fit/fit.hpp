@@ -1,9 +1,11 @@
 #pragma once
-// fit: the subdivided surface pulled into the input's tubes. A Loop limit surface is smooth, so where
-// the tubes it follows meet at an angle it bridges the concave side: it webs the crotch of a
-// bifurcation (by up to half a radius on a narrow one) and fills the inner side of a sharp bend,
-// outside the union of the centerline's round cones. Each vertex outside that union moves onto its
-// surface the shortest way; vertices inside it stay, so that no vertex is pushed towards another vessel.
+// fit: the subdivided surface brought onto the input's tubes, the union of the centerline's round
+// cones. A Loop limit surface is smooth: where the tubes it follows meet at an angle it bridges the
+// concave side, webbing the crotch of a bifurcation (by up to half a radius on a narrow one) and
+// filling the inner side of a bend, and on the convex side it cuts the corner, too thin where a coarse
+// tracing turns sharply (the union has a whole sphere at the corner point). Each vertex moves towards
+// the tubes' surface the shortest way, to within a small tolerance, so that the surface has the radius
+// the file gives wherever it can.
 
 #include <cstdint>
 
@@ -12,15 +14,26 @@
 
 namespace vesselmesh {
 
-struct FitStats {
-  int64_t moved = 0;      ///< vertices moved onto the tubes' surface (part of the way for those held back)
-  int64_t held_back = 0;  ///< of those, vertices whose full move would have turned a triangle over
+/// Which vertices the fit moves.
+enum class Fit {
+  onto,    ///< every vertex: those outside the tubes come in, those inside go out (but never through
+           ///< another tube: where tubes overlap, a vertex inside stays)
+  inward,  ///< only the vertices outside the tubes: webs and filled bends come in, the rest keeps the
+           ///< Loop surface's smooth shape
+  none,    ///< the Loop limit surface as it is
 };
 
-/// Moves every vertex of `mesh` that lies outside the union of `graph`'s round cones onto that union's
-/// surface: to within τ = 3 % of the local radius, at its closest point (stopping where the way there
-/// enters another cone). A move that would fold a triangle over, or carry a triangle through another part
+struct FitStats {
+  int64_t moved = 0;      ///< vertices moved towards the tubes' surface (part of the way for those held back)
+  int64_t held_back = 0;  ///< of those, vertices whose full move would have folded or crossed a triangle
+};
+
+/// Moves the vertices of `mesh` that `fit` chooses towards the surface of the union of `graph`'s round
+/// cones, at their closest point on it: a vertex at signed distance d ends at τr·tanh(d/τr), within
+/// τ = 3 % of the local radius r. A ripple much smaller than τr (the Loop surface's own, about 1 % round
+/// a tube) keeps its smooth shape; larger departures come within τr. An outward move stops where its way
+/// enters another cone. A move that would fold a triangle over, or carry a triangle through another part
 /// of the surface, is halved, and dropped after the sixth cut: the fit adds no folds and no crossings.
-FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph);
+FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
 
 }  // namespace vesselmesh

@@ -68,6 +68,29 @@ std::vector<Box> boxes(const std::vector<RoundCone>& cones, double reach) {
   return out;
 }
 
+// The end of each terminal: where the checker and the fit leave the surface alone.
+template <class Cap>
+std::vector<Cap> terminal_caps(const CenterlineGraph& g) {
+  std::vector<Cap> caps;
+  for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v) {
+    if (g.degree(v) != 1) continue;
+    const int32_t e = g.incident[g.offsets[v]];
+    const Vec3 axis = (g.points[v] - g.points[g.other(e, v)]).normalized();
+    caps.push_back({g.points[v], axis, g.end_radius[e][g.edges[e][0] == v ? 0 : 1]});
+  }
+  return caps;
+}
+
+template <class Cap>
+std::vector<Box> cap_boxes(const std::vector<Cap>& caps) {
+  std::vector<Box> boxes(caps.size());
+  for (std::size_t i = 0; i < caps.size(); ++i) {
+    boxes[i].extend(caps[i].centre - Vec3::Constant(2 * caps[i].radius));
+    boxes[i].extend(caps[i].centre + Vec3::Constant(2 * caps[i].radius));
+  }
+  return boxes;
+}
+
 // Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
 std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
   const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
@@ -113,27 +136,64 @@ ConeDistance cone_distance(const RoundCone& k, const Vec3& p) {
           sin_phi * axis + cos_phi * radial};
 }
 
-
 RoundCones::RoundCones(const CenterlineGraph& g)
-    : graph_(g), cones_(round_cones(g)), tight_(boxes(cones_, 0.0)), near_(boxes(cones_, kNearTube)) {}
+    : graph_(g),
+      cones_(round_cones(g)),
+      tight_(boxes(cones_, 0.0)),
+      near_(boxes(cones_, kNearTube)),
+      caps_(terminal_caps<Cap>(g)),
+      cap_bvh_(cap_boxes(caps_)) {}
 
 ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside) const {
   ConeDistance best{kInf, 0.0, Vec3::Zero()};
   int32_t best_cone = -1;
   // A cone near the last point's is likely near this one: it bounds the search from the start.
   if (hint != nullptr && *hint >= 0 && *hint < static_cast<int32_t>(cones_.size()))
-    best = cone_distance(cones_[*hint], p), best_cone = *hint;
+    best = cone_distance(cones_[*hint], p), best_cone = *hint, best.branch = cones_[*hint].branch;
   double limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
   // A cone inside a box is no nearer than the box's signed distance.
   tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
                 [&](int32_t e) {
                   const ConeDistance d = cone_distance(cones_[e], p);
-                  if (d.distance < best.distance) best = d, best_cone = e;
+                  if (d.distance < best.distance) best = d, best_cone = e, best.branch = cones_[e].branch;
                   // Inside one cone is inside the union: the sign is all that is asked.
                   limit = exact_inside || best.distance >= 0 ? best.distance : -kInf;
                 });
   if (hint != nullptr) *hint = best_cone;
   return best;
+}
+
+ConeDistance RoundCones::deepest(const Vec3& p, double depth) const {
+  ConeDistance best{kInf, 0.0, Vec3::Zero()};
+  double limit = -depth;
+  tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
+                [&](int32_t e) {
+                  const ConeDistance d = cone_distance(cones_[e], p);
+                  if (d.distance < limit) best = d, best.branch = cones_[e].branch, limit = d.distance;
+                });
+  return best;
+}
+
+bool RoundCones::inside_other_branch(const Vec3& p, int32_t branch) const {
+  bool inside = false;
+  double limit = 0.0;  // no box further than p is from its inside can hold p
+  tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
+                [&](int32_t e) {
+                  if (cones_[e].branch != branch && cone_distance(cones_[e], p).distance < 0)
+                    inside = true, limit = -kInf;
+                });
+  return inside;
+}
+
+bool RoundCones::near_cap(const Vec3& p) const {
+  bool near = false;
+  cap_bvh_.search([&](const Box& b) { return b.signed_distance(p); }, 0.0,
+                  [&](int32_t i) {
+                    const Vec3 d = p - caps_[i].centre;
+                    near =
+                        near || (d.norm() < 2 * caps_[i].radius && d.dot(caps_[i].axis) > -caps_[i].radius);
+                  });
+  return near;
 }
 
 bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {

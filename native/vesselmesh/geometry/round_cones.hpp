@@ -1,8 +1,8 @@
 #pragma once
 // The input's tubes: every centerline edge as a round cone (spheres of the end radii round its two
 // points and the cone tangent to both), gathered in a bounding-volume hierarchy. Their union is the
-// vessel the file describes: the fit stage pulls the surface into it, and the checker measures radius
-// fidelity against it.
+// vessel the file describes, but for its ends, where the surface is capped instead: the fit stage brings
+// the surface onto it, and the checker measures radius fidelity against it, both away from the caps.
 
 #include <cstdint>
 #include <vector>
@@ -22,11 +22,12 @@ struct RoundCone {
 };
 
 struct ConeDistance {
-  double distance;  ///< signed: negative inside
-  double radius;    ///< of the sphere of the cone's family (centres on the axis, radii linear) touching
-                    ///< the surface where the point is closest
-  Vec3 direction;   ///< unit, from the closest surface point towards the point when it is outside (the
-                    ///< gradient of the distance)
+  double distance;      ///< signed: negative inside
+  double radius;        ///< of the sphere of the cone's family (centres on the axis, radii linear) touching
+                        ///< the surface where the point is closest
+  Vec3 direction;       ///< unit, from the closest surface point towards the point when it is outside (the
+                        ///< gradient of the distance)
+  int32_t branch = -1;  ///< of the cone (RoundCones::nearest)
 };
 
 /// Signed distance from `p` to the surface of round cone `k`.
@@ -43,10 +44,27 @@ class RoundCones {
   /// stops at the first cone that holds `p`: the distance is then only known to be negative.
   ConeDistance nearest(const Vec3& p, int32_t* hint = nullptr, bool exact_inside = true) const;
 
+  /// Of the cones that hold `p` deeper than `depth` (> 0), the one that holds it deepest, with its
+  /// (negative) distance; distance +inf when none does. Cheap when few do.
+  ConeDistance deepest(const Vec3& p, double depth) const;
+
+  /// True when `p` lies inside a cone of a branch other than `branch`.
+  bool inside_other_branch(const Vec3& p, int32_t branch) const;
+
   /// True when `p` and `q` are near edges of two different branches whose tubes overlap.
   bool in_overlapping_tubes(const Vec3& p, const Vec3& q) const;
 
+  /// True near a terminal's end, where the surface is capped rather than round: within 2 radii of the
+  /// terminal point and less than a radius behind its section (or beyond it).
+  bool near_cap(const Vec3& p) const;
+
  private:
+  /// The end of a terminal: its centre, the axis pointing out of the tube, and the radius there.
+  struct Cap {
+    Vec3 centre, axis;
+    double radius;
+  };
+
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f) const;
 
@@ -54,6 +72,8 @@ class RoundCones {
   std::vector<RoundCone> cones_;
   Bvh tight_;  ///< over each cone's box, for nearest()
   Bvh near_;   ///< over each cone's box widened to what counts as near it, for near_edges()
+  std::vector<Cap> caps_;
+  Bvh cap_bvh_;
 };
 
 }  // namespace vesselmesh
