@@ -23,10 +23,11 @@ constexpr double kLeast = 0.02;
 /// A triangle whose normal turns further than this (cosine: a right angle) has folded over. The sides of a
 /// crotch's crease turn by up to about 60° from the web they come from.
 constexpr double kTurnCosine = 0.0;
-/// A move can carry a triangle through another part of the surface (a neighbour, or another vessel
-/// passing close by) once it is longer than this share of the vertex's shortest edge, or of the local
-/// radius; shorter moves only bend the triangles round it, which the fold test watches.
-constexpr double kLongMove = 0.5;
+/// A move can carry a triangle through another part of the surface once it is longer than this share of
+/// the vertex's shortest edge (a triangle near by), or than this share of the local radius (another
+/// vessel passing close); shorter moves only bend the triangles round it, which the fold test watches.
+constexpr double kLongAgainstEdge = 0.5;
+constexpr double kLongAgainstRadius = 0.2;
 /// A move that folds or crosses is halved, and dropped once it has been cut this many times.
 constexpr int kHalvings = 6;
 
@@ -174,10 +175,10 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
   std::vector<double> reach(n);  // how far a vertex moves before its move is long
-  for (std::size_t v = 0; v < n; ++v) reach[v] = kLongMove * radius[v];
+  for (std::size_t v = 0; v < n; ++v) reach[v] = kLongAgainstRadius * radius[v];
   for (const Tri& t : mesh.faces)
     for (int k = 0; k < 3; ++k) {
-      const double edge = kLongMove * (mesh.vertices[t[k]] - mesh.vertices[t[(k + 1) % 3]]).norm();
+      const double edge = kLongAgainstEdge * (mesh.vertices[t[k]] - mesh.vertices[t[(k + 1) % 3]]).norm();
       reach[t[k]] = std::min(reach[t[k]], edge);
       reach[t[(k + 1) % 3]] = std::min(reach[t[(k + 1) % 3]], edge);
     }
