@@ -18,7 +18,7 @@ Pictures (640 x 400):
     level1.png        level 1, wireframe over solid
     level2.png        level 2, wireframe over solid
     limit_smooth.png  level 2, smooth shaded
-    limit_unfitted.png  the same without the fit stage (`--no-fit`): the Loop surface webs the crotch
+    limit_unfitted.png  the same without the fit stage (`--fit none`): the Loop surface webs the crotch
     loop.png          ring_with_tail.vtk at level 2 (genus 1)
     network.png       `synth --sections 3000 --loops 2 --seed 1` at level 2
 
@@ -56,7 +56,7 @@ def make_meshes(cli, tmp):
     network = os.path.join(tmp, "network.vtk")
     run("synth", "-o", network, "--sections", "3000", "--loops", "2", "--seed", "1")
     jobs = {f"bifurcation{n}": (bifurcation, n, []) for n in (0, 1, 2)}
-    jobs["unfitted"] = (bifurcation, 2, ["--no-fit"])
+    jobs["unfitted"] = (bifurcation, 2, ["--fit", "none"])
     jobs["loop"] = (os.path.join(DATA, "ring_with_tail.vtk"), 2, [])
     jobs["network"] = (network, 2, [])
     paths = {}
