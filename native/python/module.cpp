@@ -255,8 +255,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
       "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or 'dihedral';\n"
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
-      "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle. fit: which\n"
-      "vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside them) or 'none'.");
+      "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
+      "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.");
 
   m.def(
       "check",

@@ -29,6 +29,16 @@ CliRun run_cli(const std::string& args) {
   return run;
 }
 
+/// The --stats-json of `vesselmesh mesh` on the project's bifurcation with the given options.
+nlohmann::json mesh_stats(const std::string& options) {
+  const std::string stats = testing::TempDir() + "stats.json";
+  const CliRun run = run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" +
+                             testing::TempDir() + "m.ply' " + options + " --stats-json '" + stats + "'");
+  EXPECT_EQ(run.status, 0) << options << ": " << run.output;
+  std::ifstream file(stats);
+  return nlohmann::json::parse(file);
+}
+
 nlohmann::json info_json(const std::string& path) {
   const CliRun run = run_cli("info --json '" + path + "'");
   EXPECT_EQ(run.status, 0) << run.output;
@@ -153,14 +163,8 @@ TEST(Cli, MeshWithCurvatureWritesTheFiveMeasuresIntoThePly) {
 }
 
 TEST(Cli, MeshMethodsGiveFewerTrianglesThanUniformAndReportTheirTagging) {
-  const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   const auto triangles = [&](const std::string& options) {
-    const std::string stats = testing::TempDir() + "stats.json";
-    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' --levels 2 " + options +
-                               " --stats-json '" + stats + "'");
-    EXPECT_EQ(run.status, 0) << options << ": " << run.output;
-    std::ifstream file(stats);
-    const nlohmann::json j = nlohmann::json::parse(file);
+    const nlohmann::json j = mesh_stats("--levels 2 " + options);
     EXPECT_EQ(j["tagged_fraction"].size(), 2u) << options;
     return j["triangles"].get<int64_t>();
   };
@@ -171,22 +175,14 @@ TEST(Cli, MeshMethodsGiveFewerTrianglesThanUniformAndReportTheirTagging) {
 }
 
 TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
-  const std::string in = vesselmesh::test::test_data("bifurcation.swc");
-  const auto stats = [&](const std::string& options) {
-    const std::string file = testing::TempDir() + "stats.json";
-    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' " + options +
-                               " --stats-json '" + file + "'");
-    EXPECT_EQ(run.status, 0) << options << ": " << run.output;
-    std::ifstream stream(file);
-    return nlohmann::json::parse(stream);
+  const auto fitted = [](const std::string& options) {
+    return mesh_stats(options)["fitted_vertices"].get<int64_t>();
   };
-  const nlohmann::json fitted = stats(""), plain = stats("--fit none");
-  EXPECT_GT(stats("--fit inward")["fitted_vertices"].get<int64_t>(), 0);
-  EXPECT_LT(stats("--fit inward")["fitted_vertices"].get<int64_t>(), fitted["fitted_vertices"].get<int64_t>());
-  EXPECT_GT(fitted["fitted_vertices"].get<int64_t>(), 0);
-  EXPECT_EQ(fitted["stages"].back()["stage"], "fit");
-  EXPECT_EQ(plain["fitted_vertices"].get<int64_t>(), 0);
-  EXPECT_EQ(plain["stages"].back()["stage"], "subdivide");
+  EXPECT_GT(fitted("--fit inward"), 0);
+  EXPECT_LT(fitted("--fit inward"), fitted(""));
+  EXPECT_EQ(fitted("--fit none"), 0);
+  EXPECT_EQ(mesh_stats("")["stages"].back()["stage"], "fit");
+  EXPECT_EQ(mesh_stats("--fit none")["stages"].back()["stage"], "subdivide");
 }
 
 TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
