@@ -99,10 +99,10 @@ std::vector<int32_t> folded(const TriMesh& mesh, const std::vector<Vec3>& moved,
   return out;
 }
 
-/// Pairs of a triangle with a long move and another triangle, not its neighbour (a neighbour would fold
-/// first), that the move may carry it through: their boxes, each swept from the triangle's place before the
-/// fit to after it (every halved move lies in between), overlap, and they did not cross before the fit
-/// (input tubes that overlap cross anyway).
+/// Pairs of a triangle with a long move and another triangle that the move may carry it into: their boxes,
+/// each swept from the triangle's place before the fit to after it (every halved move lies in between),
+/// overlap, and they did not cross before the fit (input tubes that overlap cross anyway). Each pair once,
+/// in no particular order.
 std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, const std::vector<Vec3>& moved,
                                                         const std::vector<int32_t>& long_faces) {
   std::vector<std::array<int32_t, 2>> out;
@@ -129,8 +129,8 @@ std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, con
                  [&](int32_t i) {
                    const int32_t f = long_faces[i];
                    if (f == static_cast<int32_t>(g) || (is_long[g] && static_cast<int32_t>(g) < f)) return;
-                   // Neighbours do not cross in the surface as subdivided; others may where input tubes
-                   // overlap, which the fit does not answer for.
+                   // Neighbours (sharing a corner) do not cross in the surface as subdivided; others may,
+                   // where input tubes overlap.
                    const Tri& tf = mesh.faces[f];
                    if (share_corner(tf, tg) ||
                        !triangle_interiors_meet(corners(mesh.vertices, tf), corners(mesh.vertices, tg)))
