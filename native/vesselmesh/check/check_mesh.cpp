@@ -32,10 +32,6 @@ void require_valid_indices(const TriMesh& mesh) {
                                     " of a mesh with " + std::to_string(n) + " vertices");
 }
 
-Triangle corners(const TriMesh& mesh, const Tri& f) {
-  return {mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]};
-}
-
 bool repeats_vertex(const Tri& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; }
 
 // Measured against the longest edge, so that the test does not depend on the mesh's units.
@@ -99,7 +95,7 @@ TopologyReport check_topology(const TriMesh& mesh) {
       ++r.degenerate_faces;
       continue;
     }
-    const Triangle t = corners(mesh, face);
+    const Triangle t = corners(mesh.vertices, face);
     if (has_no_area(t)) ++r.degenerate_faces;
     valid.push_back(face);
     r.signed_volume += (t[0] - origin).dot((t[1] - origin).cross(t[2] - origin)) / 6.0;
@@ -163,7 +159,7 @@ IntersectionReport find_self_intersections(const TriMesh& mesh, const Centerline
   std::vector<Box> boxes;
   for (int32_t f = 0; f < static_cast<int32_t>(mesh.faces.size()); ++f) {
     if (repeats_vertex(mesh.faces[f])) continue;
-    const Triangle t = corners(mesh, mesh.faces[f]);
+    const Triangle t = corners(mesh.vertices, mesh.faces[f]);
     if (is_degenerate(t)) continue;
     Box box;
     for (const Vec3& p : t) box.extend(p);
@@ -176,7 +172,7 @@ IntersectionReport find_self_intersections(const TriMesh& mesh, const Centerline
   std::vector<std::array<int32_t, 2>> hits;
   Bvh(boxes).for_each_overlapping_pair([&](int32_t i, int32_t j) {
     const int32_t f = face_of[i], g = face_of[j];
-    if (triangle_interiors_meet(corners(mesh, mesh.faces[f]), corners(mesh, mesh.faces[g])))
+    if (triangle_interiors_meet(corners(mesh.vertices, mesh.faces[f]), corners(mesh.vertices, mesh.faces[g])))
       hits.push_back({std::min(f, g), std::max(f, g)});
   });
   std::sort(hits.begin(), hits.end());
@@ -188,7 +184,7 @@ IntersectionReport find_self_intersections(const TriMesh& mesh, const Centerline
   if (centerline != nullptr && !hits.empty()) {
     const RoundCones cones(*centerline);
     auto centroid = [&](int32_t f) {
-      const Triangle t = corners(mesh, mesh.faces[f]);
+      const Triangle t = corners(mesh.vertices, mesh.faces[f]);
       return Vec3((t[0] + t[1] + t[2]) / 3.0);
     };
     for (const auto& [f, g] : hits)
@@ -204,7 +200,7 @@ QualityReport triangle_quality(const TriMesh& mesh) {
   ratio.reserve(mesh.faces.size());
   angle.reserve(mesh.faces.size());
   for (const Tri& face : mesh.faces) {
-    const Triangle t = corners(mesh, face);
+    const Triangle t = corners(mesh.vertices, face);
     if (repeats_vertex(face) || has_no_area(t)) {
       ++r.degenerate;
       continue;
@@ -257,7 +253,7 @@ SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, c
   const auto relative_distance = [&](const Vec3& p) {
     double best = kInf;
     bvh.search([&](const Box& b) { return b.signed_distance(p); }, best, [&](int32_t f) {
-      const Triangle t = corners(to, to.faces[f]);
+      const Triangle t = corners(to.vertices, to.faces[f]);
       best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
     });
     return best / cones.nearest(p).radius;

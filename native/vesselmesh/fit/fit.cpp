@@ -35,8 +35,6 @@ Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
   return (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
 }
 
-Triangle corners(const std::vector<Vec3>& v, const Tri& t) { return {v[t[0]], v[t[1]], v[t[2]]}; }
-
 /// Each vertex's way towards the union of the cones (zero for those `fit` leaves), and the local radius.
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
                    std::vector<Vec3>& move, std::vector<double>& radius) {
@@ -197,7 +195,7 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   for (std::size_t v = 0; v < n; ++v) moved[v] += move[v];
   const std::vector<std::array<int32_t, 2>> candidates = crossing_candidates(mesh, moved, long_faces);
   // Each round halves the moves of the corners of every folded or crossing triangle (once per round);
-  // a vertex halved kHalvings times stays where it was. Only triangles with a corner that the last round
+  // on the kHalvings-th cut a vertex stays where it was. Only triangles with a corner that the last round
   // changed (dirty) are looked at again, and every round changes something or ends the loop.
   std::vector<int> halved(n, 0);
   std::vector<char> dirty(n, 1);

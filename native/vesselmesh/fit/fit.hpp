@@ -24,8 +24,9 @@ enum class Fit {
 };
 
 struct FitStats {
-  int64_t moved = 0;      ///< vertices moved towards the tubes' surface (part of the way for those held back)
-  int64_t held_back = 0;  ///< of those, vertices whose full move would have folded or crossed a triangle
+  int64_t moved = 0;      ///< vertices moved towards the tubes' surface, all or part of the way
+  int64_t held_back = 0;  ///< vertices whose move was cut (halved, or dropped) as it would have folded or
+                          ///< crossed a triangle
 };
 
 /// Moves the vertices of `mesh` that `fit` chooses towards the surface of the union of `graph`'s round

@@ -8,6 +8,7 @@
 #include <array>
 
 #include "vesselmesh/centerline.hpp"
+#include "vesselmesh/mesh/tri_mesh.hpp"
 
 namespace vesselmesh {
 
@@ -21,6 +22,11 @@ int orient2d(const Vec2& a, const Vec2& b, const Vec2& c);
 int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 using Triangle = std::array<Vec3, 3>;
+
+/// The corners of face `t` of a mesh with these vertices.
+inline Triangle corners(const std::vector<Vec3>& vertices, const Tri& t) {
+  return {vertices[t[0]], vertices[t[1]], vertices[t[2]]};
+}
 
 /// True when the three corners are collinear (or coincide): the triangle has no plane.
 bool is_degenerate(const Triangle& t);

@@ -68,10 +68,8 @@ std::vector<Box> boxes(const std::vector<RoundCone>& cones, double reach) {
   return out;
 }
 
-// The end of each terminal: where the checker and the fit leave the surface alone.
-template <class Cap>
-std::vector<Cap> terminal_caps(const CenterlineGraph& g) {
-  std::vector<Cap> caps;
+std::vector<TerminalCap> terminal_caps(const CenterlineGraph& g) {
+  std::vector<TerminalCap> caps;
   for (int32_t v = 0; v < static_cast<int32_t>(g.points.size()); ++v) {
     if (g.degree(v) != 1) continue;
     const int32_t e = g.incident[g.offsets[v]];
@@ -81,8 +79,7 @@ std::vector<Cap> terminal_caps(const CenterlineGraph& g) {
   return caps;
 }
 
-template <class Cap>
-std::vector<Box> cap_boxes(const std::vector<Cap>& caps) {
+std::vector<Box> cap_boxes(const std::vector<TerminalCap>& caps) {
   std::vector<Box> boxes(caps.size());
   for (std::size_t i = 0; i < caps.size(); ++i) {
     boxes[i].extend(caps[i].centre - Vec3::Constant(2 * caps[i].radius));
@@ -141,7 +138,7 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       cones_(round_cones(g)),
       tight_(boxes(cones_, 0.0)),
       near_(boxes(cones_, kNearTube)),
-      caps_(terminal_caps<Cap>(g)),
+      caps_(terminal_caps(g)),
       cap_bvh_(cap_boxes(caps_)) {}
 
 ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside) const {
@@ -176,7 +173,7 @@ ConeDistance RoundCones::deepest(const Vec3& p, double depth) const {
 
 bool RoundCones::inside_other_branch(const Vec3& p, int32_t branch) const {
   bool inside = false;
-  double limit = 0.0;  // no box further than p is from its inside can hold p
+  double limit = 0.0;  // only the boxes that hold p can hold a cone that holds it
   tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
                 [&](int32_t e) {
                   if (cones_[e].branch != branch && cone_distance(cones_[e], p).distance < 0)

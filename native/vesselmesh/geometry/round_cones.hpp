@@ -30,6 +30,13 @@ struct ConeDistance {
   int32_t branch = -1;  ///< of the cone (RoundCones::nearest)
 };
 
+/// The end of a terminal, where the surface is capped rather than round: the terminal point, the axis
+/// pointing out of the tube, and the radius there.
+struct TerminalCap {
+  Vec3 centre, axis;
+  double radius;
+};
+
 /// Signed distance from `p` to the surface of round cone `k`.
 ConeDistance cone_distance(const RoundCone& k, const Vec3& p);
 
@@ -59,12 +66,6 @@ class RoundCones {
   bool near_cap(const Vec3& p) const;
 
  private:
-  /// The end of a terminal: its centre, the axis pointing out of the tube, and the radius there.
-  struct Cap {
-    Vec3 centre, axis;
-    double radius;
-  };
-
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f) const;
 
@@ -72,8 +73,8 @@ class RoundCones {
   std::vector<RoundCone> cones_;
   Bvh tight_;  ///< over each cone's box, for nearest()
   Bvh near_;   ///< over each cone's box widened to what counts as near it, for near_edges()
-  std::vector<Cap> caps_;
-  Bvh cap_bvh_;
+  std::vector<TerminalCap> caps_;
+  Bvh cap_bvh_;  ///< over each cap's neighbourhood, for near_cap()
 };
 
 }  // namespace vesselmesh
