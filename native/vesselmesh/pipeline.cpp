@@ -53,6 +53,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     start = Clock::now();
     const FitStats fit = fit_to_tubes(result.mesh, graph, options.fit);
     result.fitted_vertices = fit.moved;
+    result.parted_vertices = fit.parted;
     record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }
@@ -75,6 +76,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["absorbed_branches"] = result.absorbed_branches;
   j["tunnels"] = result.tunnels;
   j["fitted_vertices"] = result.fitted_vertices;
+  j["parted_vertices"] = result.parted_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   double total = 0;

@@ -36,6 +36,7 @@ struct MeshResult {
   std::vector<StageStats> stages;
   int64_t sections = 0, joint_patches = 0, absorbed_branches = 0, tunnels = 0;
   int64_t fitted_vertices = 0;  ///< vertices the fit stage moved
+  int64_t parted_vertices = 0;  ///< vertices it gave a move off another vessel's overlapping tube
 };
 
 /// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices

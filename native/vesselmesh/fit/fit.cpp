@@ -30,6 +30,10 @@ constexpr double kLongAgainstEdge = 0.5;
 constexpr double kLongAgainstRadius = 0.2;
 /// A move that folds or crosses is halved, and dropped once it has been cut this many times.
 constexpr int kHalvings = 6;
+/// Where two tubes overlap, each surface keeps this share of the smaller radius from the plane between them.
+constexpr double kGap = 0.02;
+/// A vertex with the tubes of one vessel only within this many local radii is that vessel's.
+constexpr double kClear = 0.25;
 
 Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
   return (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
@@ -161,6 +165,102 @@ std::vector<int32_t> crossing(const TriMesh& mesh, const std::vector<Vec3>& move
   return out;
 }
 
+/// Moves `p`, a point of the surface round the tube of sphere (ca, ra), off the tube of sphere (cb, rb)
+/// where the two overlap: onto its own side of their radical plane (which holds the circle where the
+/// spheres meet), `gap` away from it. It moves along the ray from a point inside its own part of the
+/// tube, so that the surface of that part, which is convex, maps onto the part without folding. Returns
+/// `p` itself when it is on its own side already, or when its tube has no part there (it lies inside the
+/// other: the surfaces do not cross).
+Vec3 parted(const Vec3& p, const Vec3& ca, double ra, const Vec3& cb, double rb, double gap) {
+  const double length = (ca - cb).norm();
+  if (length < 1e-9 * ra) return p;
+  const Vec3 u = (ca - cb) / length;  // towards its own side
+  // f: own power minus the other's, linear in x, negative on its own side of the radical plane.
+  auto f = [&](const Vec3& x) { return (x - ca).squaredNorm() - ra * ra - (x - cb).squaredNorm() + rb * rb; };
+  const double margin = 2 * length * gap;  // f at `gap` from the plane
+  if (f(p) <= -margin) return p;
+  const double plane = (f(ca) + margin) / (2 * length);  // along u from ca to where f = -margin
+  if (plane >= 0) return p;
+  const Vec3 inner = ca + 0.5 * (plane + ra) * u;
+  return inner + (-margin - f(inner)) / (f(p) - f(inner)) * (p - inner);
+}
+
+/// Each vertex's vessel: the branch of the tubes round it when only one branch's tubes are within a
+/// quarter radius (`clear`); elsewhere, where tubes meet or overlap, that of the nearest such vertex
+/// along the surface (breadth first), so that a vertex near where two surfaces cross is given to the side
+/// it is on. -1 for a component with no clear vertex.
+std::vector<int32_t> owners(const std::vector<Tri>& faces, const std::vector<Vec3>& vertices,
+                            const RoundCones& cones, std::vector<char>& clear) {
+  const std::size_t n = vertices.size();
+  std::vector<int32_t> owner(n, -1);
+  clear.assign(n, 0);
+  parallel_for(n, [&](std::size_t begin, std::size_t end) {
+    int32_t hint = -1;
+    for (std::size_t v = begin; v < end; ++v) {
+      const ConeDistance nearest = cones.nearest(vertices[v], &hint, false);
+      if (hint < 0) continue;
+      const std::vector<ConeDistance> near =
+          cones.crowded(hint) ? cones.within(vertices[v], kClear * nearest.radius) : std::vector<ConeDistance>{};
+      if (std::all_of(near.begin(), near.end(), [&](const ConeDistance& c) { return c.branch == nearest.branch; }))
+        owner[v] = nearest.branch, clear[v] = 1;
+    }
+  });
+  std::vector<int32_t> offsets(n + 1, 0), neighbours(6 * faces.size());
+  for (const Tri& t : faces)
+    for (int32_t v : t) offsets[v + 1] += 2;
+  for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+  std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
+  for (const Tri& t : faces)
+    for (int k = 0; k < 3; ++k) {
+      neighbours[fill[t[k]]++] = t[(k + 1) % 3];
+      neighbours[fill[t[k]]++] = t[(k + 2) % 3];
+    }
+  std::vector<int32_t> queue;
+  for (std::size_t v = 0; v < n; ++v)
+    if (owner[v] >= 0) queue.push_back(static_cast<int32_t>(v));
+  for (std::size_t i = 0; i < queue.size(); ++i)
+    for (int32_t k = offsets[queue[i]]; k < offsets[queue[i] + 1]; ++k)
+      if (owner[neighbours[k]] < 0) owner[neighbours[k]] = owner[queue[i]], queue.push_back(neighbours[k]);
+  return owner;
+}
+
+/// Where the input's tubes overlap away from the joints their vessels share, each vessel's surface runs
+/// through the other's tube and the two cross. Each vertex in (or next to) another vessel's tube gets the
+/// move onto its own side of the plane between the two tubes, in place of its move onto the union: the
+/// surfaces meet flat, like vessels pressed together, and the outside of the union, all that shows, stays.
+/// Near a joint the two vessels share, their tubes meet by design and nothing is parted. Returns the
+/// number of vertices given such a move.
+int64_t parting_moves(const std::vector<Tri>& faces, const std::vector<Vec3>& vertices, const RoundCones& cones,
+                      std::vector<Vec3>& move) {
+  std::vector<char> clear;  // only its own vessel's tubes near: nothing to part from
+  const std::vector<int32_t> owner = owners(faces, vertices, cones, clear);
+  std::vector<char> parting(vertices.size(), 0);
+  parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
+    int32_t hint = -1;
+    for (std::size_t v = begin; v < end; ++v) {
+      if (clear[v] || owner[v] < 0) continue;
+      const Vec3& p = vertices[v];
+      const ConeDistance nearest = cones.nearest(p, &hint, false);
+      if (nearest.branch == owner[v] && nearest.distance >= kGap * nearest.radius) continue;
+      const std::vector<ConeDistance> near = cones.within(p, kClear * nearest.radius);
+      const ConeDistance* own = nullptr;  // the closest surface of its own vessel's tubes
+      for (const ConeDistance& c : near)
+        if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance))) own = &c;
+      if (own == nullptr) continue;
+      const Vec3 ca = p - (own->distance + own->radius) * own->direction;  // centre of its sphere
+      Vec3 q = p;
+      for (const ConeDistance& c : near) {
+        if (c.branch == owner[v] || c.distance >= kGap * c.radius || cones.meet_near(owner[v], c.branch, p))
+          continue;
+        const Vec3 cb = p - (c.distance + c.radius) * c.direction;
+        q = parted(q, ca, own->radius, cb, c.radius, kGap * std::min(own->radius, c.radius));
+      }
+      if (q != p) move[v] = q - p, parting[v] = 1;
+    }
+  });
+  return std::count(parting.begin(), parting.end(), 1);
+}
+
 }  // namespace
 
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
@@ -169,7 +269,9 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   const std::size_t n = mesh.vertices.size();
   std::vector<Vec3> move(n, Vec3::Zero());
   std::vector<double> radius(n, 0.0);
-  closest_moves(mesh.vertices, RoundCones(graph), fit, move, radius);
+  const RoundCones cones(graph);
+  closest_moves(mesh.vertices, cones, fit, move, radius);
+  stats.parted = parting_moves(mesh.faces, mesh.vertices, cones, move);
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
   std::vector<double> reach(n);  // how far a vertex moves before its move is long

@@ -5,7 +5,9 @@
 // filling the inner side of a bend, and on the convex side it cuts the corner, too thin where a coarse
 // tracing turns sharply (the union has a whole sphere at the corner point). Each vertex moves towards
 // the tubes' surface the shortest way, to within a small tolerance, so that the surface has the radius
-// the file gives wherever it can.
+// the file gives wherever it can. Where the file's tubes overlap side by side (a vessel traced along
+// another, two vessels closer than their radii), each surface runs through the other's tube; there the
+// two are pressed flat against each other instead, so that they no longer cross.
 
 #include <cstdint>
 
@@ -17,9 +19,9 @@ namespace vesselmesh {
 /// Which vertices the fit moves.
 enum class Fit {
   onto,    ///< every vertex: those outside the tubes come in, those inside go out (but never through
-           ///< another tube: where tubes overlap, a vertex inside stays)
+           ///< another tube: a vertex inside another vessel's tube is parted from it instead)
   inward,  ///< only the vertices outside the tubes: webs and filled bends come in, the rest keeps the
-           ///< Loop surface's smooth shape
+           ///< Loop surface's smooth shape (but for the parting of overlapping tubes)
   none,    ///< the Loop limit surface as it is
 };
 
@@ -27,14 +29,19 @@ struct FitStats {
   int64_t moved = 0;      ///< vertices moved towards the tubes' surface, all or part of the way
   int64_t held_back = 0;  ///< vertices whose move was cut (halved, or dropped) as it would have folded or
                           ///< crossed a triangle
+  int64_t parted = 0;     ///< vertices given a move off another vessel's tube where the input's tubes
+                          ///< overlap (some may then be held back)
 };
 
 /// Moves the vertices of `mesh` that `fit` chooses towards the surface of the union of `graph`'s round
 /// cones, at their closest point on it: a vertex at signed distance d ends at τr·tanh(d/τr), within
 /// τ = 3 % of the local radius r. A ripple much smaller than τr (the Loop surface's own, about 1 % round
 /// a tube) keeps its smooth shape; larger departures come within τr. An outward move stops where its way
-/// enters another cone. A move that would fold a triangle over, or carry a triangle through another part
-/// of the surface, is halved, and dropped after the sixth cut: the fit adds no folds and no crossings.
+/// enters another cone. A vertex of one vessel in (or within 2 % of) another's tube, away from a joint
+/// the two share, moves instead onto its own side of the radical plane of the two tubes' spheres there,
+/// 2 % of the smaller radius from it. A move that would fold a triangle over, or carry a triangle through
+/// another part of the surface, is halved, and dropped after the sixth cut: the fit adds no folds and no
+/// crossings.
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
 
 }  // namespace vesselmesh

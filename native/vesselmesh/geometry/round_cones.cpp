@@ -15,6 +15,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNearTube = 1.5;    // a point is near a centerline edge within this many local radii
 constexpr double kJointReach = 3.0;  // radii round a shared joint where two branches merely meet
+constexpr double kCrowd = 0.5;       // radii between two tubes that count as crowding each other
 
 struct Ball {
   Vec3 centre;
@@ -139,7 +140,17 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       tight_(boxes(cones_, 0.0)),
       near_(boxes(cones_, kNearTube)),
       caps_(terminal_caps(g)),
-      cap_bvh_(cap_boxes(caps_)) {}
+      cap_bvh_(cap_boxes(caps_)),
+      crowded_(cones_.size(), 0) {
+  near_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
+    const RoundCone& k = cones_[e];
+    const RoundCone& l = cones_[f];
+    if (k.branch == l.branch) return;
+    const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
+    const double reach = k.radius_at(s) + l.radius_at(t) + kCrowd * std::max({k.r0, k.r1, l.r0, l.r1});
+    if ((k.point_at(s) - l.point_at(t)).norm() < reach) crowded_[e] = crowded_[f] = 1;
+  });
+}
 
 ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside) const {
   ConeDistance best{kInf, 0.0, Vec3::Zero()};
@@ -169,6 +180,33 @@ ConeDistance RoundCones::deepest(const Vec3& p, double depth) const {
                   if (d.distance < limit) best = d, best.branch = cones_[e].branch, limit = d.distance;
                 });
   return best;
+}
+
+std::vector<ConeDistance> RoundCones::within(const Vec3& p, double margin) const {
+  std::vector<ConeDistance> out;
+  tight_.search([&](const Box& b) { return b.signed_distance(p); }, margin,
+                [&](int32_t e) {
+                  ConeDistance d = cone_distance(cones_[e], p);
+                  d.branch = cones_[e].branch;
+                  if (d.distance < margin) out.push_back(d);
+                });
+  return out;
+}
+
+bool RoundCones::meet_near(int32_t a, int32_t b, const Vec3& p) const {
+  for (int32_t j : shared_joints(a, b))
+    if ((graph_.points[j] - p).norm() < kJointReach * graph_.radius[j]) return true;
+  return false;
+}
+
+std::vector<int32_t> RoundCones::shared_joints(int32_t a, int32_t b) const {
+  const Branch& x = graph_.branches[a];
+  const Branch& y = graph_.branches[b];
+  std::vector<int32_t> joints;
+  const std::array<int32_t, 2> ends = {x.points.front(), x.points.back()};  // the same point for a ring
+  for (int i = 0; i < (ends[1] == ends[0] ? 1 : 2); ++i)
+    if (ends[i] == y.points.front() || ends[i] == y.points.back()) joints.push_back(ends[i]);
+  return joints;
 }
 
 bool RoundCones::inside_other_branch(const Vec3& p, int32_t branch) const {
@@ -215,13 +253,9 @@ std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
 // Whether the tubes of edges e and f (of different branches) overlap away from the joints their
 // branches share: near a shared joint they meet by design, which is no overlap of the input.
 bool RoundCones::overlap(int32_t e, int32_t f) const {
-  const Branch& a = graph_.branches[cones_[e].branch];
-  const Branch& b = graph_.branches[cones_[f].branch];
   std::vector<Ball> joints;
-  const std::array<int32_t, 2> ends = {a.points.front(), a.points.back()};  // the same point for a ring
-  for (int i = 0; i < (ends[1] == ends[0] ? 1 : 2); ++i)
-    if (ends[i] == b.points.front() || ends[i] == b.points.back())
-      joints.push_back({graph_.points[ends[i]], kJointReach * graph_.radius[ends[i]]});
+  for (int32_t j : shared_joints(cones_[e].branch, cones_[f].branch))
+    joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))

@@ -55,6 +55,18 @@ class RoundCones {
   /// (negative) distance; distance +inf when none does. Cheap when few do.
   ConeDistance deepest(const Vec3& p, double depth) const;
 
+  /// The cones closer to `p` than `margin` (those that hold it, and for margin > 0 those just outside),
+  /// each with its distance and branch.
+  std::vector<ConeDistance> within(const Vec3& p, double margin) const;
+
+  /// True when branches `a` and `b` share a joint within the reach of the joint round `p` (3 joint radii),
+  /// where their tubes merely meet.
+  bool meet_near(int32_t a, int32_t b, const Vec3& p) const;
+
+  /// True when cone `e`'s tube comes within half a radius of a tube of another branch: only near such a
+  /// cone can a point on its surface lie in another vessel's tube.
+  bool crowded(int32_t e) const { return crowded_[e]; }
+
   /// True when `p` lies inside a cone of a branch other than `branch`.
   bool inside_other_branch(const Vec3& p, int32_t branch) const;
 
@@ -68,6 +80,7 @@ class RoundCones {
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f) const;
+  std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
 
   const CenterlineGraph& graph_;
   std::vector<RoundCone> cones_;
@@ -75,6 +88,7 @@ class RoundCones {
   Bvh near_;   ///< over each cone's box widened to what counts as near it, for near_edges()
   std::vector<TerminalCap> caps_;
   Bvh cap_bvh_;  ///< over each cap's neighbourhood, for near_cap()
+  std::vector<char> crowded_;  ///< per cone, see crowded()
 };
 
 }  // namespace vesselmesh
