@@ -131,6 +131,23 @@ inline CenterlineData short_loop(double scale) {
   for (int32_t c : {0, second, third}) run(d, c, d.points[c] * (12 / (2.5 / std::sqrt(3.0))), 10, 0.8 * scale);
   return d;
 }
+/// A square ring 1.7 radii across, whose tubes overlap (one merged patch, the loop a hole through it),
+/// each corner with a branch leading away along the ring's axis, up and down by turns: the hole cannot
+/// open along the axis.
+inline CenterlineData ring_between_branches(double scale) {
+  const double side = 1.2 * scale, r = 0.7 * scale;
+  CenterlineData d = start(Vec3::Zero(), r);
+  const int32_t b = run(d, 0, Vec3(side, 0, 0), 1, r);
+  const int32_t c = run(d, b, Vec3(side, side, 0), 1, r);
+  const int32_t e = run(d, c, Vec3(0, side, 0), 1, r);
+  d.edges.push_back({e, 0});
+  double up = 1;
+  for (int32_t corner : {0, b, c, e}) {
+    run(d, corner, d.points[corner] + Vec3(0, 0, up * 6 * scale), 6, 0.9 * scale);
+    up = -up;
+  }
+  return d;
+}
 /// A quarter circle of bend radius `bend` (in radii) of a vessel of radius 1, densely sampled.
 inline CenterlineData bend(double bend_radii, double scale) {
   CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
@@ -185,6 +202,7 @@ inline std::vector<Named> joint_kinds() {
       {"short_segment", short_segment, 0},
       {"lens", lens, 1},
       {"short_loop", short_loop, 1},
+      {"ring_between_branches", ring_between_branches, 1},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
       {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},

@@ -203,7 +203,8 @@ const SharedCase kSharedCases[] = {
 };
 
 // The looped network where loops can still be absorbed: a loop whose tunnel's mouths cannot clear its
-// patch within 4 loop radii, or come close to another tunnel's, is given up (47 of 53 loops kept).
+// patch within 4 loop radii even turned, or come close to another tunnel's, is given up (50 of 53 loops
+// kept).
 const SharedCase kAbsorbingCases[] = {
     {"vesselgraph-demo/vertices.csv", false},
 };
@@ -274,7 +275,7 @@ TEST_P(SharedSurfaceAbsorbing, SurfaceIsClosedManifoldWithOneComponentPerInputCo
   }
 }
 
-// Not met yet: vesselgraph-demo has genus 47 of its 53 loops (see kAbsorbingCases).
+// Not met yet: vesselgraph-demo has genus 50 of its 53 loops (see kAbsorbingCases).
 TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
   SHARED_DATA_OR_SKIP(path, GetParam().file);
   const CenterlineGraph g = build_graph(read_centerline(path));

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "vesselmesh/frames/frames.hpp"
+#include "vesselmesh/geometry/closest_point.hpp"
 
 namespace vesselmesh {
 
@@ -87,22 +88,6 @@ std::vector<Box> cap_boxes(const std::vector<TerminalCap>& caps) {
     boxes[i].extend(caps[i].centre + Vec3::Constant(2 * caps[i].radius));
   }
   return boxes;
-}
-
-// Parameters in [0, 1] of the closest points of segments p0 → p1 and q0 → q1.
-std::pair<double, double> closest_parameters(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
-  if (a == 0) return {0.0, e == 0 ? 0.0 : unit(f / e)};
-  const double c = d1.dot(r);
-  if (e == 0) return {unit(-c / a), 0.0};
-  const double b = d1.dot(d2), denominator = a * e - b * b;
-  double s = denominator > 0 ? unit((b * f - c * e) / denominator) : 0.0;  // parallel: any s will do
-  const double t = (b * s + f) / e;
-  if (t < 0) return {unit(-c / a), 0.0};
-  if (t > 1) return {unit((b - c) / a), 1.0};
-  return {s, t};
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "vesselmesh/frames/frames.hpp"
+#include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/sample/branch_curve.hpp"
 #include "vesselmesh/tile/convex_hull.hpp"
@@ -19,6 +20,9 @@ namespace vesselmesh {
 namespace {
 
 using Quad = std::array<int32_t, 4>;
+
+/// Ways a tunnel is turned (each from where the patch's squares then stand) before its loop is given up.
+constexpr int kTurns = 3;
 
 /// How a branch that meets a joint is built.
 enum class Kind {
@@ -53,8 +57,15 @@ struct Tunnel {
   /// that the mouths of several loops in one patch fan out rather than push each other out without end.
   std::array<Vec3, 2> out;
   double radius = 0;  ///< the loop's mean radius
+  /// Whether the mouths face `turned_out` instead: the loop's mouths could not clear the patch on either
+  /// side of its plane, and were turned to faces of the patch's hull (Tiler::turn_tunnel).
+  bool turned = false;
+  std::array<Vec3, 2> turned_out;
+  int turns = 0;
   double hole() const { return 0.25 * radius; }
-  /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all.
+  /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all. (Along the
+  /// loop's normal, a mouth pushed further stands out of the patch as a spike; on faces of the patch's
+  /// hull, a longer hole keeps the outer surface from coming in onto the tubes round its mouths.)
   double reach() const { return 4 * radius; }
 };
 
@@ -270,9 +281,10 @@ class Tiler {
     for (int round = 0;; ++round) {
       collect_patches();
       for (const Patch& p : patches_) place_squares(p, 0);
-      // A tunnel whose mouths cannot clear the patch, or come close to another tunnel's (two loops of
-      // nearly the same centre), gives its loop up; the patch is placed again without it before anything
-      // else is decided, as its mouths may have pushed the other squares.
+      // A tunnel whose mouths cannot clear the patch is turned to run where the patch is thinner; one
+      // that still cannot, or whose mouths come close to another tunnel's (two loops of nearly the same
+      // centre), gives its loop up. The patch is placed again before anything else is decided, as the
+      // mouths may have pushed the other squares.
       bool changed = false;
       for (const Patch& p : patches_) {
         std::vector<int32_t> kept;
@@ -285,9 +297,10 @@ class Tiler {
             kept.push_back(b);
             continue;
           }
+          changed = true;
+          if (!clash && tunnel_[b].turns < kTurns && turn_tunnel(b, p, kept)) continue;
           kind_[b] = Kind::swallowed;
           --mesh_.tunnels;
-          changed = true;
         }
       }
       if (changed) continue;
@@ -332,6 +345,47 @@ class Tiler {
   }
 
   std::vector<int32_t> patch_of_end_;
+
+  /// A straight hole through a convex patch gives it a genus whichever way it runs. For a tunnel whose
+  /// mouths could not clear patch `p` on either side of its loop's plane: mouths on two faces of the
+  /// hull of the patch's other squares and rims, facing apart (normals over 134° apart), whose
+  /// planes the loop's centroid is nearest to and lies in front of. A mouth on a face of the hull adds no
+  /// bulge to it, wherever the patch is thick. The hole must keep clear of the holes of the tunnels
+  /// `kept` already. Returns false when no pair of faces will do within the tunnel's reach.
+  bool turn_tunnel(int32_t b, const Patch& p, const std::vector<int32_t>& kept) {
+    Tunnel& h = tunnel_[b];
+    ++h.turns;
+    h.turned = false;
+    std::vector<Vec3> others = p.rim;
+    for (int32_t i : p.ends)
+      if (ends_[i].branch != b)
+        for (int k = 0; k < 4; ++k) others.push_back(ends_[i].square.corner(k, scale()));
+    // Each face the centroid lies in front of: its outward normal and the centroid's depth below it.
+    std::vector<std::pair<Vec3, double>> faces;
+    for (const Tri& t : convex_hull(others)) {
+      const Vec3 &a = others[t[0]], &c = others[t[1]], &d = others[t[2]];
+      const Vec3 n = (c - a).cross(d - a).normalized();
+      const double depth = n.dot(a - h.center);
+      const Vec3 foot = h.center + depth * n;
+      auto inside = [&](const Vec3& u, const Vec3& v) { return (v - u).cross(foot - u).dot(n) >= 0; };
+      if (depth > 0 && inside(a, c) && inside(c, d) && inside(d, a)) faces.push_back({n, depth});
+    }
+    const double margin = 0.1 * scale() * h.hole();  // in front of a face, as intrusion() asks
+    double best = h.reach() - margin;
+    for (const auto& [n0, t0] : faces)
+      for (const auto& [n1, t1] : faces) {
+        if (n0.dot(n1) > -0.7 || std::max(t0, t1) >= best) continue;
+        const Vec3 head = h.center + (t0 + margin) * n0, tail = h.center + (t1 + margin) * n1;
+        const bool clash = std::any_of(kept.begin(), kept.end(), [&](int32_t other) {
+          const Vec3 &a = ends_[head_[other]].square.center, &c = ends_[tail_[other]].square.center;
+          const auto [s, t] = closest_parameters(head, tail, a, c);
+          return (head + s * (tail - head) - (a + t * (c - a))).norm() <
+                 2 * scale() * (tunnel_[other].hole() + h.hole());
+        });
+        if (!clash) best = std::max(t0, t1), h.turned = true, h.turned_out = {n0, n1};
+      }
+    return h.turned;
+  }
 
   /// Whether a mouth of tunnel a comes within twice the corners' reach of a mouth of tunnel b, so that
   /// the hull would leave no wall between the two holes.
@@ -442,6 +496,7 @@ class Tiler {
         tilt -= tilt.dot(h.normal) * h.normal;
         if (tilt.norm() > 0.5) tilt *= 0.5 / tilt.norm();
         h.out = {(h.normal + tilt).normalized(), (tilt - h.normal).normalized()};
+        if (h.turned) h.out = h.turned_out;
       }
     }
   }
@@ -536,7 +591,10 @@ class Tiler {
         else
           patch.insert(patch.end(), {Tri{q, q + 2, q + 1}, Tri{q, q + 3, q + 2}});
       }
-      if (!closes_openings(patch, p)) continue;
+      // With open caps, a stub's square that is a face of the hull is an opening too.
+      std::vector<int> open_side(p.ends.size(), 0);
+      if (opt_.caps == Caps::open) open_side = stub_side;
+      if (!closes_openings(patch, p, open_side)) continue;
       std::vector<int32_t> id;
       for (int32_t i : p.ends) {
         const auto v = square_vertices(ends_[i]);
@@ -555,15 +613,19 @@ class Tiler {
   }
 
   /// The patch must use each opening's edges once, against the square's direction (the tube or the
-  /// other patch uses them along it), and every other edge twice, once each way.
-  bool closes_openings(const std::vector<Tri>& patch, const Patch& p) const {
+  /// other patch uses them along it), and every other edge twice, once each way. A stub's square is an
+  /// opening only where `open_side` says so: +1 facing out of the patch, −1 facing into it (its edges
+  /// then run the other way round the hole).
+  bool closes_openings(const std::vector<Tri>& patch, const Patch& p, const std::vector<int>& open_side) const {
     std::map<std::pair<int32_t, int32_t>, int> directed;
     for (const Tri& t : patch)
       for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
     for (std::size_t s = 0; s < p.ends.size(); ++s) {
-      if (kind_[ends_[p.ends[s]].branch] == Kind::stub) continue;
+      const bool stub = kind_[ends_[p.ends[s]].branch] == Kind::stub;
+      if (stub && open_side[s] == 0) continue;
       for (int k = 0; k < 4; ++k) {
-        const int32_t a = static_cast<int32_t>(4 * s) + k, b = static_cast<int32_t>(4 * s) + (k + 1) % 4;
+        int32_t a = static_cast<int32_t>(4 * s) + k, b = static_cast<int32_t>(4 * s) + (k + 1) % 4;
+        if (stub && open_side[s] < 0) std::swap(a, b);
         if (directed[{b, a}] != 1 || directed[{a, b}] != 0) return false;
         directed.erase({b, a});
         directed.erase({a, b});
