@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "vesselmesh/mesh/adjacency.hpp"
 #include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
@@ -17,54 +18,6 @@ namespace {
 /// Normals at right angles, as on square tubes or tubes of 8 vertices round, give dot products of ±1e-17 by
 /// rounding: the margin leaves them out whatever the rounding.
 constexpr double kFacingMargin = 1e-6;
-
-/// Compressed rows: row i holds items[offsets[i]] .. items[offsets[i + 1] − 1].
-struct Csr {
-  std::vector<size_t> offsets;
-  std::vector<int32_t> items;
-  const int32_t* begin(int32_t i) const { return items.data() + offsets[i]; }
-  const int32_t* end(int32_t i) const { return items.data() + offsets[i + 1]; }
-};
-
-/// The faces around each vertex (a counting sort of the 3F corners).
-Csr vertex_faces(const TriMesh& mesh) {
-  const size_t nv = mesh.vertices.size();
-  Csr csr;
-  csr.offsets.assign(nv + 1, 0);
-  for (size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int32_t v : mesh.faces[f]) {
-      if (v < 0 || static_cast<size_t>(v) >= nv)
-        throw std::invalid_argument("curvature: face " + std::to_string(f) + " refers to vertex " +
-                                    std::to_string(v) + " of " + std::to_string(nv));
-      ++csr.offsets[v + 1];
-    }
-  for (size_t v = 0; v < nv; ++v) csr.offsets[v + 1] += csr.offsets[v];
-  csr.items.resize(csr.offsets[nv]);
-  std::vector<size_t> next(csr.offsets.begin(), csr.offsets.end() - 1);
-  for (size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int32_t v : mesh.faces[f]) csr.items[next[v]++] = static_cast<int32_t>(f);
-  return csr;
-}
-
-/// The 1-ring of each vertex, sorted: the other corners of its faces.
-Csr vertex_neighbours(const TriMesh& mesh, const Csr& faces) {
-  const size_t nv = mesh.vertices.size();
-  Csr csr;
-  csr.offsets.reserve(nv + 1);
-  csr.offsets.push_back(0);
-  csr.items.reserve(faces.items.size() + nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const size_t start = csr.items.size();
-    for (const int32_t* f = faces.begin(static_cast<int32_t>(v)); f != faces.end(static_cast<int32_t>(v));
-         ++f)
-      for (int32_t w : mesh.faces[*f])
-        if (static_cast<size_t>(w) != v) csr.items.push_back(w);
-    std::sort(csr.items.begin() + start, csr.items.end());
-    csr.items.erase(std::unique(csr.items.begin() + start, csr.items.end()), csr.items.end());
-    csr.offsets.push_back(csr.items.size());
-  }
-  return csr;
-}
 
 /// Unit area-weighted vertex normals (the sum of the face cross products), zero for a vertex in no
 /// non-degenerate face.

@@ -9,6 +9,7 @@
 #include "vesselmesh/geometry/bvh.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/mesh/adjacency.hpp"
 #include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
@@ -189,8 +190,8 @@ Vec3 parted(const Vec3& p, const Vec3& ca, double ra, const Vec3& cb, double rb,
 /// quarter radius (`clear`); elsewhere, where tubes meet or overlap, that of the nearest such vertex
 /// along the surface (breadth first), so that a vertex near where two surfaces cross is given to the side
 /// it is on. -1 for a component with no clear vertex.
-std::vector<int32_t> owners(const std::vector<Tri>& faces, const std::vector<Vec3>& vertices,
-                            const RoundCones& cones, std::vector<char>& clear) {
+std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones, std::vector<char>& clear) {
+  const std::vector<Vec3>& vertices = mesh.vertices;
   const std::size_t n = vertices.size();
   std::vector<int32_t> owner(n, -1);
   clear.assign(n, 0);
@@ -205,22 +206,13 @@ std::vector<int32_t> owners(const std::vector<Tri>& faces, const std::vector<Vec
         owner[v] = nearest.branch, clear[v] = 1;
     }
   });
-  std::vector<int32_t> offsets(n + 1, 0), neighbours(6 * faces.size());
-  for (const Tri& t : faces)
-    for (int32_t v : t) offsets[v + 1] += 2;
-  for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
-  std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
-  for (const Tri& t : faces)
-    for (int k = 0; k < 3; ++k) {
-      neighbours[fill[t[k]]++] = t[(k + 1) % 3];
-      neighbours[fill[t[k]]++] = t[(k + 2) % 3];
-    }
+  const Csr neighbours = vertex_neighbours(mesh, vertex_faces(mesh));
   std::vector<int32_t> queue;
   for (std::size_t v = 0; v < n; ++v)
     if (owner[v] >= 0) queue.push_back(static_cast<int32_t>(v));
   for (std::size_t i = 0; i < queue.size(); ++i)
-    for (int32_t k = offsets[queue[i]]; k < offsets[queue[i] + 1]; ++k)
-      if (owner[neighbours[k]] < 0) owner[neighbours[k]] = owner[queue[i]], queue.push_back(neighbours[k]);
+    for (const int32_t* w = neighbours.begin(queue[i]); w != neighbours.end(queue[i]); ++w)
+      if (owner[*w] < 0) owner[*w] = owner[queue[i]], queue.push_back(*w);
   return owner;
 }
 
@@ -230,10 +222,10 @@ std::vector<int32_t> owners(const std::vector<Tri>& faces, const std::vector<Vec
 /// surfaces meet flat, like vessels pressed together, and the outside of the union, all that shows, stays.
 /// Near a joint the two vessels share, their tubes meet by design and nothing is parted. Returns the
 /// number of vertices given such a move.
-int64_t parting_moves(const std::vector<Tri>& faces, const std::vector<Vec3>& vertices, const RoundCones& cones,
-                      std::vector<Vec3>& move) {
+int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, std::vector<Vec3>& move) {
+  const std::vector<Vec3>& vertices = mesh.vertices;
   std::vector<char> clear;  // only its own vessel's tubes near: nothing to part from
-  const std::vector<int32_t> owner = owners(faces, vertices, cones, clear);
+  const std::vector<int32_t> owner = owners(mesh, cones, clear);
   std::vector<char> parting(vertices.size(), 0);
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;
@@ -271,7 +263,7 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   std::vector<double> radius(n, 0.0);
   const RoundCones cones(graph);
   closest_moves(mesh.vertices, cones, fit, move, radius);
-  stats.parted = parting_moves(mesh.faces, mesh.vertices, cones, move);
+  stats.parted = parting_moves(mesh, cones, move);
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
   std::vector<double> reach(n);  // how far a vertex moves before its move is long
