@@ -141,8 +141,8 @@ TEST(Fit, SurfacesOfTubesThatOverlapSideBySideArePartedAtEveryScale) {
   // fit presses them flat against each other, and leaves the outside of the union where it was.
   for (double scale : {1e-3, 1.0, 1e3}) {
     CenterlineData d;
-    d.points = {Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(20, 0, 0), Vec3(0, 1.2, 0.3), Vec3(10, 1.2, 0.3),
-                Vec3(20, 1.2, 0.3)};
+    d.points = {Vec3(0, 0, 0),     Vec3(10, 0, 0),     Vec3(20, 0, 0),
+                Vec3(0, 1.2, 0.3), Vec3(10, 1.2, 0.3), Vec3(20, 1.2, 0.3)};
     for (Vec3& p : d.points) p *= scale;
     d.radius.assign(6, scale);
     d.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};

@@ -200,9 +200,11 @@ std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones, std::v
     for (std::size_t v = begin; v < end; ++v) {
       const ConeDistance nearest = cones.nearest(vertices[v], &hint, false);
       if (hint < 0) continue;
-      const std::vector<ConeDistance> near =
-          cones.crowded(hint) ? cones.within(vertices[v], kClear * nearest.radius) : std::vector<ConeDistance>{};
-      if (std::all_of(near.begin(), near.end(), [&](const ConeDistance& c) { return c.branch == nearest.branch; }))
+      const std::vector<ConeDistance> near = cones.crowded(hint)
+                                                 ? cones.within(vertices[v], kClear * nearest.radius)
+                                                 : std::vector<ConeDistance>{};
+      if (std::all_of(near.begin(), near.end(),
+                      [&](const ConeDistance& c) { return c.branch == nearest.branch; }))
         owner[v] = nearest.branch, clear[v] = 1;
     }
   });
@@ -237,7 +239,8 @@ int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, std::vector<
       const std::vector<ConeDistance> near = cones.within(p, kClear * nearest.radius);
       const ConeDistance* own = nullptr;  // the closest surface of its own vessel's tubes
       for (const ConeDistance& c : near)
-        if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance))) own = &c;
+        if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance)))
+          own = &c;
       if (own == nullptr) continue;
       const Vec3 ca = p - (own->distance + own->radius) * own->direction;  // centre of its sphere
       Vec3 q = p;

@@ -13,8 +13,8 @@ Csr vertex_faces(const TriMesh& mesh) {
   for (size_t f = 0; f < mesh.faces.size(); ++f)
     for (int32_t v : mesh.faces[f]) {
       if (v < 0 || static_cast<size_t>(v) >= nv)
-        throw std::invalid_argument("face " + std::to_string(f) + " refers to vertex " +
-                                    std::to_string(v) + " of " + std::to_string(nv));
+        throw std::invalid_argument("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                                    " of " + std::to_string(nv));
       ++csr.offsets[v + 1];
     }
   for (size_t v = 0; v < nv; ++v) csr.offsets[v + 1] += csr.offsets[v];

@@ -616,7 +616,8 @@ class Tiler {
   /// other patch uses them along it), and every other edge twice, once each way. A stub's square is an
   /// opening only where `open_side` says so: +1 facing out of the patch, −1 facing into it (its edges
   /// then run the other way round the hole).
-  bool closes_openings(const std::vector<Tri>& patch, const Patch& p, const std::vector<int>& open_side) const {
+  bool closes_openings(const std::vector<Tri>& patch, const Patch& p,
+                       const std::vector<int>& open_side) const {
     std::map<std::pair<int32_t, int32_t>, int> directed;
     for (const Tri& t : patch)
       for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
