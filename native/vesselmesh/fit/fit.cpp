@@ -170,8 +170,8 @@ std::vector<int32_t> crossing(const TriMesh& mesh, const std::vector<Vec3>& move
 /// where the two overlap: onto its own side of their radical plane (which holds the circle where the
 /// spheres meet), `gap` away from it. It moves along the ray from a point inside its own part of the
 /// tube, so that the surface of that part, which is convex, maps onto the part without folding. Returns
-/// `p` itself when it is on its own side already, or when its tube has no part there (it lies inside the
-/// other: the surfaces do not cross).
+/// `p` itself when it is on its own side already, or when its sphere's centre lies past the plane (its
+/// tube lies mostly inside the other, and squeezing it into the sliver on its side would fold it).
 Vec3 parted(const Vec3& p, const Vec3& ca, double ra, const Vec3& cb, double rb, double gap) {
   const double length = (ca - cb).norm();
   if (length < 1e-9 * ra) return p;

@@ -61,7 +61,7 @@ struct Tunnel {
   /// side of its plane, and were turned to faces of the patch's hull (Tiler::turn_tunnel).
   bool turned = false;
   std::array<Vec3, 2> turned_out;
-  int turns = 0;
+  int turns = 0;  ///< how often it has been turned
   double hole() const { return 0.25 * radius; }
   /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all. (Along the
   /// loop's normal, a mouth pushed further stands out of the patch as a spike; on faces of the patch's
