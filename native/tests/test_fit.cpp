@@ -138,7 +138,7 @@ TEST(Fit, NoVertexGoesOutThroughAnotherTubeAndCrossingTubesCrossNoMore) {
 
 TEST(Fit, SurfacesOfTubesThatOverlapSideBySideArePartedAtEveryScale) {
   // Two straight vessels 1.2 radii apart, side by side: each surface runs through the other's tube. The
-  // fit presses them flat against each other, and leaves the outside of the union where it was.
+  // fit, onto or inward, presses them flat against each other, and leaves the outside of the union.
   for (double scale : {1e-3, 1.0, 1e3}) {
     CenterlineData d;
     d.points = {Vec3(0, 0, 0),     Vec3(10, 0, 0),     Vec3(20, 0, 0),
@@ -149,13 +149,15 @@ TEST(Fit, SurfacesOfTubesThatOverlapSideBySideArePartedAtEveryScale) {
     const CenterlineGraph g = build_graph(d);
     const TriMesh before = limit_surface(g);
     ASSERT_GT(find_self_intersections(before).pairs, 0) << scale;
-    TriMesh after = before;
-    const FitStats stats = fit_to_tubes(after, g, Fit::onto);
-    EXPECT_GT(stats.parted, 0) << scale;
-    EXPECT_EQ(find_self_intersections(after).pairs, 0) << scale;
-    EXPECT_TRUE(check_topology(after).closed_manifold()) << scale;
-    // No vertex ends further outside the union than the fit's tolerance; the parted ones are inside it.
-    EXPECT_LE(largest_error(after, g), 0.031) << scale;
+    for (Fit fit : {Fit::onto, Fit::inward}) {
+      TriMesh after = before;
+      const FitStats stats = fit_to_tubes(after, g, fit);
+      EXPECT_GT(stats.parted, 0) << scale;
+      EXPECT_EQ(find_self_intersections(after).pairs, 0) << scale;
+      EXPECT_TRUE(check_topology(after).closed_manifold()) << scale;
+      // No vertex ends further outside the union than the fit's tolerance; the parted ones are inside.
+      EXPECT_LE(largest_error(after, g), 0.031) << scale;
+    }
   }
 }
 
