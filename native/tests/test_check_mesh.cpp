@@ -468,6 +468,25 @@ TEST(SelfIntersections, BranchesMeetingAtAJointAreNotAnOverlapOfTheInput) {
   }
 }
 
+TEST(SelfIntersections, ABranchComingBackThroughItsNeighbourNearTheirJointOverlapsTheInput) {
+  for (double s : kScales) {
+    // a through tube along x with a joint at the origin; the side branch leaves along y, turns, and comes
+    // back down through the through tube 2 radii from the joint, inside the joint's reach
+    const TriMesh mesh = merged(closed_tube(Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, s, 40, 24),
+                                closed_tube(Vec3(2, 4, 0) * s, Vec3(2, -4, 0) * s, s, 20, 24));
+    CenterlineData d;
+    d.points = {Vec3(0, 0, 0) * s, Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, Vec3(0, 4, 0) * s,
+                Vec3(2, 4, 0) * s, Vec3(2, -4, 0) * s};
+    d.radius.assign(d.points.size(), s);
+    d.edges = {{1, 0}, {0, 2}, {0, 3}, {3, 4}, {4, 5}};
+    const CenterlineGraph g = build_graph(d);
+    ASSERT_EQ(g.branches.size(), 3u);
+    const IntersectionReport r = find_self_intersections(mesh, &g);
+    EXPECT_GT(r.pairs, 0) << s;
+    EXPECT_EQ(r.pairs_in_overlapping_tubes, r.pairs) << s;
+  }
+}
+
 // --- quality ----------------------------------------------------------------------------------------
 
 TEST(TriangleQuality, EquilateralTriangleHasRadiusRatioTwoAndAnglesOfSixtyDegrees) {

@@ -126,7 +126,19 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       near_(boxes(cones_, kNearTube)),
       caps_(terminal_caps(g)),
       cap_bvh_(cap_boxes(caps_)),
-      crowded_(cones_.size(), 0) {
+      crowded_(cones_.size(), 0),
+      leads_out_(cones_.size(), {0, 0}) {
+  // A branch's edges from each of its ends for as long as they start within the end's reach.
+  for (const Branch& b : g.branches) {
+    const std::size_t n = b.edges.size();
+    const int32_t first = b.points.front(), last = b.points.back();
+    for (std::size_t i = 0; i < n && (g.points[b.points[i]] - g.points[first]).norm() < kJointReach * g.radius[first];
+         ++i)
+      leads_out_[b.edges[i]][0] = 1;
+    for (std::size_t i = n; i > 0 && (g.points[b.points[i]] - g.points[last]).norm() < kJointReach * g.radius[last];
+         --i)
+      leads_out_[b.edges[i - 1]][1] = 1;
+  }
   near_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
     const RoundCone& k = cones_[e];
     const RoundCone& l = cones_[f];
@@ -176,6 +188,11 @@ std::vector<ConeDistance> RoundCones::within(const Vec3& p, double margin) const
                   if (d.distance < margin) out.push_back(d);
                 });
   return out;
+}
+
+bool RoundCones::leads_out_of(int32_t e, int32_t joint) const {
+  const Branch& b = graph_.branches[cones_[e].branch];
+  return (b.points.front() == joint && leads_out_[e][0]) || (b.points.back() == joint && leads_out_[e][1]);
 }
 
 bool RoundCones::meet_near(int32_t a, int32_t b, const Vec3& p) const {
@@ -236,11 +253,13 @@ std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
 }
 
 // Whether the tubes of edges e and f (of different branches) overlap away from the joints their
-// branches share: near a shared joint they meet by design, which is no overlap of the input.
+// branches share: near a shared joint they meet by design, which is no overlap of the input. Only edges
+// that both lead out of the joint meet there: a branch that has left the joint's reach and comes back
+// through its neighbour's tube overlaps it.
 bool RoundCones::overlap(int32_t e, int32_t f) const {
   std::vector<Ball> joints;
   for (int32_t j : shared_joints(cones_[e].branch, cones_[f].branch))
-    joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
+    if (leads_out_of(e, j) && leads_out_of(f, j)) joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))

@@ -4,6 +4,7 @@
 // vessel the file describes, but for its ends, where the surface is capped instead: the fit stage brings
 // the surface onto it, and the checker measures radius fidelity against it, both away from the caps.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -81,6 +82,7 @@ class RoundCones {
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
+  bool leads_out_of(int32_t e, int32_t joint) const;
 
   const CenterlineGraph& graph_;
   std::vector<RoundCone> cones_;
@@ -89,6 +91,9 @@ class RoundCones {
   std::vector<TerminalCap> caps_;
   Bvh cap_bvh_;  ///< over each cap's neighbourhood, for near_cap()
   std::vector<char> crowded_;  ///< per cone, see crowded()
+  /// Per cone: whether it is among the edges leading out of its branch's first (0) or last (1) point,
+  /// those that start within the point's joint reach.
+  std::vector<std::array<char, 2>> leads_out_;
 };
 
 }  // namespace vesselmesh
