@@ -9,7 +9,6 @@
 #include "vesselmesh/geometry/bvh.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
-#include "vesselmesh/mesh/adjacency.hpp"
 #include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
@@ -40,14 +39,16 @@ Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
   return (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
 }
 
-/// Each vertex's way towards the union of the cones (zero for those `fit` leaves), and the local radius.
+/// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, and
+/// the cone nearest to it (outside; inside, the first found that holds it).
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
-                   std::vector<Vec3>& move, std::vector<double>& radius) {
+                   std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
       const Vec3& p = vertices[v];
       ConeDistance d = cones.nearest(p, &hint, false);  // inside: only the sign
+      nearest_cone[v] = hint;
       radius[v] = d.radius;
       if (d.distance < 0) {
         if (fit != Fit::onto) continue;
@@ -189,32 +190,57 @@ Vec3 parted(const Vec3& p, const Vec3& ca, double ra, const Vec3& cb, double rb,
 /// Each vertex's vessel: the branch of the tubes round it when only one branch's tubes are within a
 /// quarter radius (`clear`); elsewhere, where tubes meet or overlap, that of the nearest such vertex
 /// along the surface (breadth first), so that a vertex near where two surfaces cross is given to the side
-/// it is on. -1 for a component with no clear vertex.
-std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones, std::vector<char>& clear) {
-  const std::vector<Vec3>& vertices = mesh.vertices;
-  const std::size_t n = vertices.size();
+/// it is on. -1 for a component with no clear vertex. `nearest_cone` and `radius` are closest_moves'.
+std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones,
+                            const std::vector<int32_t>& nearest_cone, const std::vector<double>& radius,
+                            std::vector<char>& clear) {
+  const std::size_t n = mesh.vertices.size();
   std::vector<int32_t> owner(n, -1);
   clear.assign(n, 0);
   parallel_for(n, [&](std::size_t begin, std::size_t end) {
-    int32_t hint = -1;
     for (std::size_t v = begin; v < end; ++v) {
-      const ConeDistance nearest = cones.nearest(vertices[v], &hint, false);
-      if (hint < 0) continue;
-      const std::vector<ConeDistance> near = cones.crowded(hint)
-                                                 ? cones.within(vertices[v], kClear * nearest.radius)
-                                                 : std::vector<ConeDistance>{};
-      if (std::all_of(near.begin(), near.end(),
-                      [&](const ConeDistance& c) { return c.branch == nearest.branch; }))
-        owner[v] = nearest.branch, clear[v] = 1;
+      const int32_t e = nearest_cone[v];
+      if (e < 0) continue;
+      const int32_t branch = cones.cone(e).branch;
+      // Only near a crowded cone can another branch's tube be near.
+      if (cones.crowded(e)) {
+        const std::vector<ConeDistance> near = cones.within(mesh.vertices[v], kClear * radius[v]);
+        if (std::any_of(near.begin(), near.end(), [&](const ConeDistance& c) { return c.branch != branch; }))
+          continue;
+      }
+      owner[v] = branch, clear[v] = 1;
     }
   });
-  const Csr neighbours = vertex_neighbours(mesh, vertex_faces(mesh));
-  std::vector<int32_t> queue;
+  // The breadth-first search runs over the vertices that are not clear, and their neighbours.
+  std::vector<int32_t> slot(n, -1), unclear;
   for (std::size_t v = 0; v < n; ++v)
-    if (owner[v] >= 0) queue.push_back(static_cast<int32_t>(v));
-  for (std::size_t i = 0; i < queue.size(); ++i)
-    for (const int32_t* w = neighbours.begin(queue[i]); w != neighbours.end(queue[i]); ++w)
+    if (!clear[v]) slot[v] = static_cast<int32_t>(unclear.size()), unclear.push_back(static_cast<int32_t>(v));
+  std::vector<int32_t> offsets(unclear.size() + 1, 0);
+  for (const Tri& t : mesh.faces)
+    for (int32_t v : t)
+      if (slot[v] >= 0) offsets[slot[v] + 1] += 2;
+  for (std::size_t i = 0; i < unclear.size(); ++i) offsets[i + 1] += offsets[i];
+  std::vector<int32_t> neighbours(offsets.back()), fill(offsets.begin(), offsets.end() - 1);
+  for (const Tri& t : mesh.faces)
+    for (int k = 0; k < 3; ++k)
+      if (slot[t[k]] >= 0) {
+        neighbours[fill[slot[t[k]]]++] = t[(k + 1) % 3];
+        neighbours[fill[slot[t[k]]]++] = t[(k + 2) % 3];
+      }
+  auto around = [&](int32_t v) {
+    return std::make_pair(neighbours.begin() + offsets[slot[v]], neighbours.begin() + offsets[slot[v] + 1]);
+  };
+  std::vector<int32_t> queue;
+  for (int32_t v : unclear) {
+    const auto [first, last] = around(v);
+    const auto labelled = std::find_if(first, last, [&](int32_t w) { return clear[w] != 0; });
+    if (labelled != last) owner[v] = owner[*labelled], queue.push_back(v);
+  }
+  for (std::size_t i = 0; i < queue.size(); ++i) {
+    const auto [first, last] = around(queue[i]);
+    for (auto w = first; w != last; ++w)
       if (owner[*w] < 0) owner[*w] = owner[queue[i]], queue.push_back(*w);
+  }
   return owner;
 }
 
@@ -224,10 +250,12 @@ std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones, std::v
 /// surfaces meet flat, like vessels pressed together, and the outside of the union, all that shows, stays.
 /// Near a joint the two vessels share, their tubes meet by design and nothing is parted. Returns the
 /// number of vertices given such a move.
-int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, std::vector<Vec3>& move) {
+int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::vector<int32_t>& nearest_cone,
+                      const std::vector<double>& radius, std::vector<Vec3>& move) {
+  if (!cones.any_crowded()) return 0;
   const std::vector<Vec3>& vertices = mesh.vertices;
   std::vector<char> clear;  // only its own vessel's tubes near: nothing to part from
-  const std::vector<int32_t> owner = owners(mesh, cones, clear);
+  const std::vector<int32_t> owner = owners(mesh, cones, nearest_cone, radius, clear);
   std::vector<char> parting(vertices.size(), 0);
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;
@@ -265,8 +293,9 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   std::vector<Vec3> move(n, Vec3::Zero());
   std::vector<double> radius(n, 0.0);
   const RoundCones cones(graph);
-  closest_moves(mesh.vertices, cones, fit, move, radius);
-  stats.parted = parting_moves(mesh, cones, move);
+  std::vector<int32_t> nearest_cone(n, -1);
+  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone);
+  stats.parted = parting_moves(mesh, cones, nearest_cone, radius, move);
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
   std::vector<double> reach(n);  // how far a vertex moves before its move is long

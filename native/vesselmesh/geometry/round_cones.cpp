@@ -132,20 +132,18 @@ RoundCones::RoundCones(const CenterlineGraph& g)
   for (const Branch& b : g.branches) {
     const std::size_t n = b.edges.size();
     const int32_t first = b.points.front(), last = b.points.back();
-    for (std::size_t i = 0; i < n && (g.points[b.points[i]] - g.points[first]).norm() < kJointReach * g.radius[first];
-         ++i)
+    for (std::size_t i = 0;
+         i < n && (g.points[b.points[i]] - g.points[first]).norm() < kJointReach * g.radius[first]; ++i)
       leads_out_[b.edges[i]][0] = 1;
-    for (std::size_t i = n; i > 0 && (g.points[b.points[i]] - g.points[last]).norm() < kJointReach * g.radius[last];
-         --i)
+    for (std::size_t i = n;
+         i > 0 && (g.points[b.points[i]] - g.points[last]).norm() < kJointReach * g.radius[last]; --i)
       leads_out_[b.edges[i - 1]][1] = 1;
   }
   near_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
     const RoundCone& k = cones_[e];
     const RoundCone& l = cones_[f];
-    if (k.branch == l.branch) return;
-    const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
-    const double reach = k.radius_at(s) + l.radius_at(t) + kCrowd * std::max({k.r0, k.r1, l.r0, l.r1});
-    if ((k.point_at(s) - l.point_at(t)).norm() < reach) crowded_[e] = crowded_[f] = 1;
+    if (k.branch != l.branch && overlap(e, f, kCrowd * std::max({k.r0, k.r1, l.r0, l.r1})))
+      crowded_[e] = crowded_[f] = any_crowded_ = 1;
   });
 }
 
@@ -252,21 +250,22 @@ std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
   return near;
 }
 
-// Whether the tubes of edges e and f (of different branches) overlap away from the joints their
-// branches share: near a shared joint they meet by design, which is no overlap of the input. Only edges
-// that both lead out of the joint meet there: a branch that has left the joint's reach and comes back
-// through its neighbour's tube overlaps it.
-bool RoundCones::overlap(int32_t e, int32_t f) const {
+// Whether the tubes of edges e and f (of different branches) overlap, or come within `margin` of each
+// other, away from the joints their branches share: near a shared joint they meet by design, which is no
+// overlap of the input. Only edges that both lead out of the joint meet there: a branch that has left
+// the joint's reach and comes back through its neighbour's tube overlaps it.
+bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
   std::vector<Ball> joints;
   for (int32_t j : shared_joints(cones_[e].branch, cones_[f].branch))
-    if (leads_out_of(e, j) && leads_out_of(f, j)) joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
+    if (leads_out_of(e, j) && leads_out_of(f, j))
+      joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))
     for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
       const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
       const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
-      if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t)) return true;
+      if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t) + margin) return true;
     }
   return false;
 }

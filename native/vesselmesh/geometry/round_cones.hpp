@@ -64,9 +64,14 @@ class RoundCones {
   /// where their tubes merely meet.
   bool meet_near(int32_t a, int32_t b, const Vec3& p) const;
 
-  /// True when cone `e`'s tube comes within half a radius of a tube of another branch: only near such a
-  /// cone can a point on its surface lie in another vessel's tube.
+  const RoundCone& cone(int32_t e) const { return cones_[e]; }
+
+  /// True when cone `e`'s tube comes within half a radius of a tube of another branch, away from the
+  /// joints the two share: only near such a cone can a point on its surface lie in another vessel's tube
+  /// where the two do not merely meet.
   bool crowded(int32_t e) const { return crowded_[e]; }
+  /// True when some cone is crowded.
+  bool any_crowded() const { return any_crowded_; }
 
   /// True when `p` lies inside a cone of a branch other than `branch`.
   bool inside_other_branch(const Vec3& p, int32_t branch) const;
@@ -80,7 +85,7 @@ class RoundCones {
 
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;
-  bool overlap(int32_t e, int32_t f) const;
+  bool overlap(int32_t e, int32_t f, double margin = 0) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;
 
@@ -91,6 +96,7 @@ class RoundCones {
   std::vector<TerminalCap> caps_;
   Bvh cap_bvh_;  ///< over each cap's neighbourhood, for near_cap()
   std::vector<char> crowded_;  ///< per cone, see crowded()
+  bool any_crowded_ = false;
   /// Per cone: whether it is among the edges leading out of its branch's first (0) or last (1) point,
   /// those that start within the point's joint reach.
   std::vector<std::array<char, 2>> leads_out_;
