@@ -258,13 +258,10 @@ int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::v
   const std::vector<int32_t> owner = owners(mesh, cones, nearest_cone, radius, clear);
   std::vector<char> parting(vertices.size(), 0);
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
-    int32_t hint = -1;
     for (std::size_t v = begin; v < end; ++v) {
       if (clear[v] || owner[v] < 0) continue;
       const Vec3& p = vertices[v];
-      const ConeDistance nearest = cones.nearest(p, &hint, false);
-      if (nearest.branch == owner[v] && nearest.distance >= kGap * nearest.radius) continue;
-      const std::vector<ConeDistance> near = cones.within(p, kClear * nearest.radius);
+      const std::vector<ConeDistance> near = cones.within(p, kClear * radius[v]);
       const ConeDistance* own = nullptr;  // the closest surface of its own vessel's tubes
       for (const ConeDistance& c : near)
         if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance)))
