@@ -50,6 +50,26 @@ def test_surface_colours_follow_the_chosen_measure_and_range(project_data, color
                        colors.map_colors(rms, state.color_low, state.color_high, "viridis"), atol=1e-6)
 
 
+def test_import_colours_by_the_measure_map_and_range_it_was_given(project_data, colors):
+    _, surface = import_file(project_data / "bifurcation.swc", color_measure="rms", colormap="rdbu", percentile=10)
+    state = surface.vesselmesh
+    rms = attribute(surface, "rms")
+    assert (state.color_measure, state.color_map) == ("rms", "rdbu")
+    assert (state.color_low, state.color_high) == pytest.approx(tuple(np.percentile(rms, [10, 90])), rel=1e-6)
+    assert np.allclose(attribute(surface, "curvature_color"),
+                       colors.map_colors(rms, state.color_low, state.color_high, "rdbu"), atol=1e-6)
+
+
+def test_a_mesh_job_hands_over_its_colours_only_for_the_settings_it_coloured_by(project_data):
+    meshing = sys.modules["vesselmesh"].core.meshing
+    graph = meshing.centerline_graph(**meshing.read_centerline(project_data / "bifurcation.swc"))
+    job = meshing.MeshJob(graph, {}, ("mean", "auto", 2.0))
+    name, lo, hi, rgba = job.coloring(("mean", "auto", 2.0))
+    assert name == "rdbu" and lo == -hi and rgba.shape == (len(job.surface()[0]), 4)
+    assert job.coloring(("rms", "auto", 2.0)) is None  # the settings changed while it ran: colour anew
+    assert meshing.MeshJob(graph, {}, None).coloring(("mean", "auto", 2.0)) is None  # no curvature asked for
+
+
 def test_legend_shows_the_colour_range_in_the_cameras_view(project_data):
     _, surface = import_file(project_data / "bifurcation.swc")
     camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))

@@ -34,20 +34,27 @@ def set_indices(collection, item_type, name, values):
     collection.foreach_set(name, values.ravel().view(np.uint32) if unsigned else values.ravel())
 
 
-def set_triangles(mesh, faces, edges, corner_edges):
-    """Edges, corners and faces of a mesh whose vertices, edges, loops and polygons were just added: faces
-    (F,3), edges (E,2) and corner_edges (F,3) (the edge from each corner to the next), all int32."""
-    set_indices(mesh.edges, bpy.types.MeshEdge, "vertices", edges)
-    corner_vert, corner_edge = mesh.attributes.get(".corner_vert"), mesh.attributes.get(".corner_edge")  # 3.6+
+def set_faces(mesh, faces):
+    """The corners and faces of a mesh whose loops and polygons were just added: faces (F,3) int32."""
+    corner_vert = mesh.attributes.get(".corner_vert")  # 3.6+
     if corner_vert is not None:
         corner_vert.data.foreach_set("value", faces.ravel())
-        corner_edge.data.foreach_set("value", corner_edges.ravel())
     else:
         set_indices(mesh.loops, bpy.types.MeshLoop, "vertex_index", faces)
-        set_indices(mesh.loops, bpy.types.MeshLoop, "edge_index", corner_edges)
     set_indices(mesh.polygons, bpy.types.MeshPolygon, "loop_start", np.arange(0, faces.size, 3, dtype=np.int32))
     if not bpy.types.MeshPolygon.bl_rna.properties["loop_total"].is_readonly:  # derived from loop_start in 3.6+
         set_indices(mesh.polygons, bpy.types.MeshPolygon, "loop_total", np.full(len(faces), 3, dtype=np.int32))
+
+
+def set_edges(mesh, edges, corner_edges):
+    """The edges of a mesh whose edges were just added, and the edge of each corner: edges (E,2) and
+    corner_edges (F,3) (the edge from each corner to the next), int32."""
+    set_indices(mesh.edges, bpy.types.MeshEdge, "vertices", edges)
+    corner_edge = mesh.attributes.get(".corner_edge")  # 3.6+
+    if corner_edge is not None:
+        corner_edge.data.foreach_set("value", corner_edges.ravel())
+    else:
+        set_indices(mesh.loops, bpy.types.MeshLoop, "edge_index", corner_edges)
 
 
 def shade_smooth(mesh):

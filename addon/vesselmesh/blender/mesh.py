@@ -7,18 +7,21 @@ from .. import compat
 COLOR_ATTRIBUTE = "curvature_color"
 
 
-def write_surface(mesh, vertices, faces, edges, corner_edges):
+def write_surface(mesh, vertices, faces, edges):
     """Replaces the geometry of mesh (keeping its name, materials and users) by a smooth-shaded triangle
-    surface: vertices (V,3) float32, faces (F,3) int32 and their edges as vesselmesh_core.edges gives them
-    (edges (E,2), corner_edges (F,3) int32), all C-contiguous. Handing Blender the edges spares it
-    hashing them (calc_edges), the largest part of building a big mesh."""
+    surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous; edges() returns their edges as
+    vesselmesh_core.edges gives them (edges (E,2), corner_edges (F,3) int32). Handing Blender the edges
+    spares it hashing them (calc_edges), the largest part of building a big mesh; edges() is called once
+    the vertices and faces are written, so that a worker can list them meanwhile."""
     mesh.clear_geometry()
     mesh.vertices.add(len(vertices))
-    mesh.edges.add(len(edges))
     mesh.loops.add(faces.size)
     mesh.polygons.add(len(faces))
     compat.set_positions(mesh, vertices.ravel())
-    compat.set_triangles(mesh, faces, edges, corner_edges)
+    compat.set_faces(mesh, faces)
+    edges, corner_edges = edges()
+    mesh.edges.add(len(edges))
+    compat.set_edges(mesh, edges, corner_edges)
     compat.shade_smooth(mesh)
     mesh.update()
 

@@ -11,7 +11,7 @@ from ..core import meshing
 from ..core.native import core
 from . import mesh as mesh_data
 from .paint import add_legend, curvature_material, paint
-from .properties import MeshSettings, copy_settings, mesh_options
+from .properties import MeshSettings, color_options, copy_settings, mesh_options
 
 
 class MeshJobRunner:
@@ -66,13 +66,14 @@ class MeshJobRunner:
 
 def build_surface(job, surface, started):
     """Writes the job's surface and curvature into the surface object's mesh, and its figures."""
-    mesh_data.write_surface(surface.data, *job.surface())
+    mesh_data.write_surface(surface.data, *job.surface(), job.edges)
     for name, values in job.curvature().items():  # waits for the curvature run, which ran meanwhile
         mesh_data.set_float_attribute(surface.data, name, values)
     stats = job.stats()
     stats["wall_seconds"] = time.perf_counter() - started
     surface.vesselmesh.stats = json.dumps(stats)
-    if paint(surface) and not surface.data.materials:
+    coloring = job.coloring(color_options(surface.vesselmesh.centerline.vesselmesh.settings))
+    if paint(surface, coloring) and not surface.data.materials:
         surface.data.materials.append(curvature_material())
 
 
@@ -122,7 +123,7 @@ class IMPORT_SCENE_OT_vesselmesh(MeshSettings, MeshJobRunner, bpy.types.Operator
         except (ValueError, RuntimeError) as error:  # InputError names the file and the line
             self.report({"ERROR"}, str(error))
             return {"CANCELLED"}
-        return self.run(context, meshing.MeshJob(graph, mesh_options(self), self.curvature))
+        return self.run(context, meshing.MeshJob(graph, mesh_options(self), color_options(self)))
 
     def finish(self, context, job):
         # The scene changes only once the surface exists: a failed or cancelled run leaves it as it was.
@@ -188,7 +189,7 @@ class VESSELMESH_OT_generate(MeshJobRunner, bpy.types.Operator):
             self.report({"ERROR"}, f"{centerline.name}: {error}")
             return {"CANCELLED"}
         self._centerline = centerline
-        return self.run(context, meshing.MeshJob(graph, mesh_options(settings), settings.curvature))
+        return self.run(context, meshing.MeshJob(graph, mesh_options(settings), color_options(settings)))
 
     def finish(self, context, job):
         centerline = self._centerline

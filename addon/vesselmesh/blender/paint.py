@@ -12,20 +12,20 @@ MATERIAL = "VesselMesh curvature"
 TEXT_MATERIAL = "VesselMesh legend text"
 
 
-def paint(surface):
-    """Colours the surface by the curvature measure its centerline's settings choose; False when the
-    surface has no curvature attributes (meshed without curvature)."""
+def paint(surface, coloring=None):
+    """Colours the surface by the curvature measure its centerline's settings choose: by `coloring` when
+    the caller has it (colors.color_by for those settings), else from the surface's attributes. False
+    when there is nothing to colour by (meshed without curvature)."""
     settings = surface.vesselmesh.centerline.vesselmesh.settings
-    measure = settings.color_measure
-    values = mesh_data.float_attribute(surface.data, measure)
-    if values is None:
-        return False
+    if coloring is None:
+        values = mesh_data.float_attribute(surface.data, settings.color_measure)
+        if values is None:
+            return False
+        coloring = colors.color_by(values, settings.color_measure, settings.colormap, settings.percentile)
     state = surface.vesselmesh
-    state.color_measure = measure
-    state.color_map = colors.colormap_for(measure, settings.colormap)
-    state.color_low, state.color_high = colors.value_range(values, measure, settings.percentile)
-    mesh_data.set_point_colors(surface.data, colors.map_colors(values, state.color_low, state.color_high,
-                                                               state.color_map))
+    state.color_measure = settings.color_measure
+    state.color_map, state.color_low, state.color_high, rgba = coloring
+    mesh_data.set_point_colors(surface.data, rgba)
     if state.legend is not None:
         update_legend(state.legend, surface)
     return True

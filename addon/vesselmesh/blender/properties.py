@@ -90,6 +90,12 @@ def mesh_options(settings):
     return {name: getattr(settings, name) for name in MESH_OPTIONS}
 
 
+def color_options(settings):
+    """What colors.color_by takes besides the values: the measure, colour map and percentile; None when
+    the settings ask for no curvature."""
+    return (settings.color_measure, settings.colormap, settings.percentile) if settings.curvature else None
+
+
 class VesselMeshSettings(MeshSettings, bpy.types.PropertyGroup):
     pass
 

@@ -36,6 +36,14 @@ def value_range(values, measure, percentile=2.0):
     return lo, hi
 
 
+def color_by(values, measure, choice="auto", percentile=2.0):
+    """How to colour a surface by the values of a measure: (map name, lo, hi, (V,4) RGBA), with the map
+    colormap_for chooses and the range value_range gives."""
+    name = colormap_for(measure, choice)
+    lo, hi = value_range(values, measure, percentile)
+    return name, lo, hi, map_colors(values, lo, hi, name)
+
+
 def srgb_to_linear(c):
     """sRGB components in [0, 1] to scene-linear, as Blender stores float colours."""
     c = np.asarray(c, dtype=np.float64)

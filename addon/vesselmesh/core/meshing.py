@@ -4,6 +4,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from . import colors
 from .native import core
 
 # The keyword arguments of vesselmesh_core.mesh that the add-on's settings carry, by the same names.
@@ -46,16 +47,18 @@ def centerline_graph(points, edges, radius=None, edge_radius=None, default_radiu
 class MeshJob:
     """One meshing of a graph by the core, in worker threads (the core releases the GIL while it works).
 
-    Once the surface exists, one worker lists its edges for Blender while the other, with curvature,
-    estimates the surface's curvature; Blender builds the mesh from the surface and its edges while the
-    curvature is still being estimated.
+    Once the surface exists, one worker lists its edges for Blender while the other estimates the
+    surface's curvature and colours it, when `color` asks for that: the measure, colour map and percentile
+    of colors.color_by (None for no curvature). Blender builds the mesh from the surface and its edges
+    while the curvature is still being estimated; the main thread then only hands Blender the colours.
     """
 
-    def __init__(self, graph, options, curvature):
+    def __init__(self, graph, options, color):
+        self._color = color
         pool = ThreadPoolExecutor(max_workers=2, thread_name_prefix="vesselmesh")
         self._surface = pool.submit(core().mesh, graph, **options)
         self._edges = pool.submit(self._list_edges)
-        self._curvature = pool.submit(self._estimate_curvature) if curvature else None
+        self._curvature = pool.submit(self._estimate_curvature) if color is not None else None
         pool.shutdown(wait=False)
 
     def _list_edges(self):
@@ -66,7 +69,9 @@ class MeshJob:
         result = self._surface.result()
         start = time.perf_counter()
         values = core().curvature(result["vertices"], result["faces"])
-        return values, time.perf_counter() - start
+        seconds = time.perf_counter() - start
+        measure = values[self._color[0]].astype(np.float64)  # as Blender's attribute reads back for a recolour
+        return values, seconds, colors.color_by(measure, *self._color)
 
     def _futures(self):
         return [f for f in (self._surface, self._edges, self._curvature) if f is not None]
@@ -83,17 +88,26 @@ class MeshJob:
             f.cancel()
 
     def surface(self):
-        """Waits for the surface: vertices (V,3) float32, faces (F,3) int32, edges (E,2) int32 and
-        corner_edges (F,3) int32 (see vesselmesh_core.edges), C-contiguous (ready for Blender's foreach_set).
-        Raises what the core raised."""
+        """Waits for the surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous (ready for
+        Blender's foreach_set). Raises what the core raised."""
         result = self._surface.result()
         return (np.ascontiguousarray(result["vertices"], dtype=np.float32),
-                np.ascontiguousarray(result["faces"], dtype=np.int32), *self._edges.result())
+                np.ascontiguousarray(result["faces"], dtype=np.int32))
+
+    def edges(self):
+        """Waits for the surface's edges: edges (E,2) int32 and corner_edges (F,3) int32 (see
+        vesselmesh_core.edges)."""
+        return self._edges.result()
 
     def curvature(self):
         """Waits for the curvature: {name: (V,) float32} for k1, k2, mean, gaussian and rms, or {} without
         curvature."""
         return {} if self._curvature is None else self._curvature.result()[0]
+
+    def coloring(self, color):
+        """Waits for the colours: what colors.color_by gave, when `color` is what the job was asked to
+        colour by (the settings may have changed while it ran); else None."""
+        return None if self._curvature is None or color != self._color else self._curvature.result()[2]
 
     def stats(self):
         """The core's statistics of the run, with the curvature stage when there was one."""
