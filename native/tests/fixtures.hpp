@@ -181,6 +181,24 @@ inline CenterlineData straight(double length_radii, double scale) {
   return d;
 }
 
+/// A short vessel that turns back on itself: 0.9 along +z, then 0.8 at 135° from there, radius 1 (paths
+/// like this come from tracings of a vessel that ends curled up).
+inline CenterlineData hairpin(double scale) {
+  CenterlineData d = start(Vec3::Zero(), scale);
+  const int32_t top = run(d, 0, Vec3(0, 0, 0.9 * scale), 1, scale);
+  run(d, top, d.points[top] + 0.8 * scale * dir(135), 1, scale);
+  return d;
+}
+/// A bifurcation whose second child turns back towards the joint within two of its radii: out 1.4 at 80°
+/// from the trunk, then 1.0 back at 150° to that.
+inline CenterlineData hairpin_at_a_joint(double scale) {
+  CenterlineData d = star({{40, 0, 0.8}}, scale);
+  const int32_t joint = 10;
+  const int32_t out = run(d, joint, 1.4 * scale * dir(80, 180), 1, 0.7 * scale);
+  run(d, out, d.points[out] + 1.0 * scale * dir(80 + 150, 180), 1, 0.7 * scale);
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
@@ -205,7 +223,13 @@ inline std::vector<Named> joint_kinds() {
       {"ring_between_branches", ring_between_branches, 1},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
+      {"fig9_small_angle_large_radius",
+       [](double s) {
+         return star({{8, 0, 1}, {8, 180, 1}}, s);
+       },
+       0},
+      {"hairpin", hairpin, 0},
+      {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
   };
 }
 

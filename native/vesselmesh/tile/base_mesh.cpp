@@ -273,10 +273,22 @@ class Tiler {
     return best;
   }
 
+  /// Whether a branch from a joint to a terminal has room for a tube after its joint square: its end lies
+  /// a quarter of its radius or more in front of the square, or two diameters away. One that turns back
+  /// behind the square within that (a hairpin a few radii long) would fold into the patch.
+  bool room_for_tube(int32_t b) const {
+    const End& e = ends_[head_[b] >= 0 ? head_[b] : tail_[b]];
+    const BranchCurve& c = curves_[b];
+    const double far = e.at_start ? c.length() : 0.0, r = c.radius_at(far);
+    const Vec3 to_end = c.position(far) - e.square.center;
+    return e.square.normal.dot(to_end) >= 0.25 * r || to_end.norm() >= 2 * (r + e.square.radius);
+  }
+
   /// Groups joints into patches and decides each branch's kind. A branch between two joints too short
   /// for a tube first tries one shared square; failing that, its joints merge into one patch, or, when
   /// they share one already, it becomes a tunnel. A branch from a joint to a terminal too short for a
-  /// tube becomes a stub. Repeated until nothing changes.
+  /// tube, or without room for one after its square (room_for_tube), becomes a stub. Repeated until
+  /// nothing changes.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
@@ -319,7 +331,7 @@ class Tiler {
           bool stuck = false;
           for (int32_t i : {head_[b], tail_[b]})
             if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-          if (!stuck && used <= curves_[b].length()) continue;
+          if (!stuck && used <= curves_[b].length() && (both || room_for_tube(b))) continue;
         }
         changed = true;
         if (!both) {
@@ -711,6 +723,19 @@ class Tiler {
     sections = std::move(kept);
   }
 
+  /// When a branch keeps only its end sections and even these cross (it turns by more than a right angle
+  /// within a few radii), its terminal ends face along the chord between the two, or along the joint
+  /// square at its other end: a straight piece with parallel squares cannot fold.
+  void unfold_ends(std::vector<Section>& sections, bool free_front, bool free_back) const {
+    Section &a = sections.front(), &b = sections.back();
+    const Vec3 chord = b.center - a.center;
+    if (sections.size() != 2 || !(chord.norm() > 0) || !crosses(a, b)) return;
+    if (free_front) a.normal = chord.normalized();
+    if (free_back) b.normal = chord.normalized();
+    if (crosses(a, b) && free_front != free_back)
+      (free_front ? a.normal : b.normal) = (free_front ? b : a).normal;
+  }
+
   void build_tube(int32_t b) {
     const BranchCurve& c = curves_[b];
     const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
@@ -729,7 +754,10 @@ class Tiler {
     if (ring) sections.back().center = sections.front().center;
     if (head) sections.front().normal = head->square.normal;
     if (tail) sections.back().normal = -tail->square.normal;
-    if (!ring) drop_folds(sections);
+    if (!ring) {
+      drop_folds(sections);
+      unfold_ends(sections, !head, !tail);
+    }
     const std::size_t m = sections.size() - 1;
     // Where the tube really runs at each section: along the polyline through the centres.
     std::vector<Vec3> axis(m + 1);
