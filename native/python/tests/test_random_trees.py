@@ -1,0 +1,60 @@
+"""Random trees with hard geometry: segments far shorter than their radius, hairpins, crowded joints.
+
+Every surface must be a closed manifold with one component and genus 0, at every level. Run as a script,
+it also reports how many of them cross themselves outside overlapping input tubes (not yet zero):
+
+    PYTHONPATH=build/python /usr/bin/python3 native/python/tests/test_random_trees.py [TREES]
+"""
+import sys
+
+import numpy as np
+import pytest
+
+import vesselmesh_core as vm
+
+
+def random_tree(rng):
+    """(points (N,3), edges (N-1,2), radius (N,)): each point grows from the last one or, two times in five,
+    from an earlier one, turning by up to about a right angle or anywhere, by 0.05 to 3 of the root's
+    radius scale, its radius 0.6 to 1.2 times its parent's."""
+    n = int(rng.integers(2, 40))
+    points, directions, radius, edges = [np.zeros(3)], [rng.normal(size=3)], [rng.uniform(0.2, 1.0)], []
+    for i in range(1, n):
+        parent = int(rng.integers(0, i)) if rng.random() < 0.4 else i - 1
+        direction = directions[parent] + rng.normal(size=3) * rng.choice([0.1, 0.5, 2.0])
+        direction /= np.linalg.norm(direction)
+        length = rng.choice([0.05, 0.3, 1.0, 3.0]) * rng.uniform(0.5, 1.5)
+        points.append(points[parent] + length * direction)
+        directions.append(direction)
+        radius.append(max(0.02, radius[parent] * rng.uniform(0.6, 1.2)))
+        edges.append((parent, i))
+    return np.array(points), np.array(edges), np.array(radius)
+
+
+def meshed_trees(count, seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(count):
+        points, edges, radius = random_tree(rng)
+        graph = vm.Graph(points, edges, radius=radius)
+        for levels in (0, 2):
+            result = vm.mesh(graph, levels=levels)
+            yield graph, levels, vm.check(result["vertices"], result["faces"], graph)
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_random_trees_give_closed_manifolds_of_genus_zero(seed):
+    for graph, levels, report in meshed_trees(150, seed):
+        topology = report["topology"]
+        assert report["closed_manifold"], (seed, levels, topology)
+        assert (topology["components"], topology["genus"]) == (1, 0), (seed, levels, topology)
+
+
+if __name__ == "__main__":
+    count = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
+    crossed = [0, 0]
+    for seed in (1, 2):
+        for _, levels, report in meshed_trees(count // 2, seed):
+            pairs = report["intersections"]
+            crossed[levels // 2] += pairs["pairs"] > pairs["pairs_in_overlapping_tubes"]
+    print(f"{count} random trees: {crossed[0]} cross themselves outside overlapping input tubes at level 0, "
+          f"{crossed[1]} at level 2")
