@@ -181,21 +181,32 @@ inline CenterlineData straight(double length_radii, double scale) {
   return d;
 }
 
-/// A short vessel that turns back on itself: 0.9 along +z, then 0.8 at 135° from there, radius 1 (paths
+/// A short vessel that turns back on itself: 0.9 along +z, then 0.8 at 115° from there, radius 1 (paths
 /// like this come from tracings of a vessel that ends curled up).
 inline CenterlineData hairpin(double scale) {
   CenterlineData d = start(Vec3::Zero(), scale);
   const int32_t top = run(d, 0, Vec3(0, 0, 0.9 * scale), 1, scale);
-  run(d, top, d.points[top] + 0.8 * scale * dir(135), 1, scale);
+  run(d, top, d.points[top] + 0.8 * scale * dir(115), 1, scale);
   return d;
 }
-/// A bifurcation whose second child turns back towards the joint within two of its radii: out 1.4 at 80°
-/// from the trunk, then 1.0 back at 150° to that.
+/// A bifurcation whose second child curls back towards the joint within two of its radii: out 1.4 at
+/// 80° from the trunk, then 0.8 and 0.8 more, each turning by 80° further round.
 inline CenterlineData hairpin_at_a_joint(double scale) {
   CenterlineData d = star({{40, 0, 0.8}}, scale);
   const int32_t joint = 10;
-  const int32_t out = run(d, joint, 1.4 * scale * dir(80, 180), 1, 0.7 * scale);
-  run(d, out, d.points[out] + 1.0 * scale * dir(80 + 150, 180), 1, 0.7 * scale);
+  int32_t at = run(d, joint, 1.4 * scale * dir(80, 180), 1, 0.7 * scale);
+  at = run(d, at, d.points[at] + 0.8 * scale * dir(160, 180), 1, 0.7 * scale);
+  run(d, at, d.points[at] + 0.8 * scale * dir(240, 180), 1, 0.7 * scale);
+  return d;
+}
+/// A sparse tracing that makes a U-turn out of plane, one point at each corner: 74 radii up, 11.5 across
+/// (turning 74°), 71 back (turning 136°), radius 1.6 down to 0.6 (from a random tree whose tube folded at
+/// the second corner).
+inline CenterlineData u_turn(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 1.592 * scale);
+  const int32_t up = run(d, 0, scale * Vec3(-11.6129, 20.7808, 70.2774), 1, 0.9841 * scale);
+  const int32_t across = run(d, up, scale * Vec3(-22.6622, 18.4828, 72.3059), 1, 0.9119 * scale);
+  run(d, across, scale * Vec3(39.106, -14.4887, 84.4562), 1, 0.6035 * scale);
   return d;
 }
 
@@ -230,6 +241,7 @@ inline std::vector<Named> joint_kinds() {
        0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
+      {"u_turn", u_turn, 0},
   };
 }
 

@@ -31,9 +31,10 @@ CliRun run_cli(const std::string& args) {
 
 /// The --stats-json of `vesselmesh mesh` on the project's bifurcation with the given options.
 nlohmann::json mesh_stats(const std::string& options) {
-  const std::string stats = testing::TempDir() + "stats.json";
-  const CliRun run = run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" +
-                             testing::TempDir() + "m.ply' " + options + " --stats-json '" + stats + "'");
+  const std::string stats = vesselmesh::test::temp_path("stats.json");
+  const CliRun run =
+      run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" +
+              vesselmesh::test::temp_path("m.ply") + "' " + options + " --stats-json '" + stats + "'");
   EXPECT_EQ(run.status, 0) << options << ": " << run.output;
   std::ifstream file(stats);
   return nlohmann::json::parse(file);
@@ -120,7 +121,7 @@ TEST(Cli, InfoTextNamesTheFile) {
 }
 
 TEST(Cli, MalformedInputExitsNonZeroWithTheFileAndLine) {
-  const std::string path = testing::TempDir() + "truncated.swc";
+  const std::string path = vesselmesh::test::temp_path("truncated.swc");
   std::ofstream(path) << "1 1 0 0 0 1 -1\n2 1 0 0 1\n";
   const CliRun run = run_cli("info '" + path + "'");
   EXPECT_NE(run.status, 0);
@@ -129,7 +130,7 @@ TEST(Cli, MalformedInputExitsNonZeroWithTheFileAndLine) {
 
 TEST(Cli, MissingFileAndUnknownFormatExitNonZero) {
   EXPECT_NE(run_cli("info /nonexistent/file.swc").status, 0);
-  const std::string path = testing::TempDir() + "network.xyz";
+  const std::string path = vesselmesh::test::temp_path("network.xyz");
   std::ofstream(path) << "hello\n";
   const CliRun run = run_cli("info '" + path + "'");
   EXPECT_NE(run.status, 0);
@@ -137,7 +138,7 @@ TEST(Cli, MissingFileAndUnknownFormatExitNonZero) {
 }
 
 TEST(Cli, SynthWritesANetworkThatInfoReadsBack) {
-  const std::string path = testing::TempDir() + "synth.vtk";
+  const std::string path = vesselmesh::test::temp_path("synth.vtk");
   for (const char* binary : {"", " --binary"}) {
     const CliRun run = run_cli("synth -o '" + path + "' --sections 3000 --loops 3 --seed 5" + binary);
     ASSERT_EQ(run.status, 0) << run.output;
@@ -149,7 +150,7 @@ TEST(Cli, SynthWritesANetworkThatInfoReadsBack) {
 }
 
 TEST(Cli, MeshWithCurvatureWritesTheFiveMeasuresIntoThePly) {
-  const std::string out = testing::TempDir() + "bifurcation.ply";
+  const std::string out = vesselmesh::test::temp_path("bifurcation.ply");
   const CliRun run = run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" + out +
                              "' --levels 2 --curvature");
   ASSERT_EQ(run.status, 0) << run.output;
@@ -189,7 +190,8 @@ TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
   const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",
                               "--uniform-levels -1", "--fit outward"}) {
-    const CliRun run = run_cli("mesh '" + in + "' -o '" + testing::TempDir() + "m.ply' " + options);
+    const CliRun run =
+        run_cli("mesh '" + in + "' -o '" + vesselmesh::test::temp_path("m.ply") + "' " + options);
     EXPECT_NE(run.status, 0) << options;
   }
 }

@@ -20,6 +20,16 @@ inline std::string test_data(const std::string& relative) {
   return (std::filesystem::path(VESSELMESH_TEST_DATA) / relative).string();
 }
 
+/// Path of a file `name` in the test temporary directory, unique to the running test: ctest runs the tests
+/// as parallel processes that share the directory.
+inline std::string temp_path(const std::string& name) {
+  const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+  std::string test = std::string(info->test_suite_name()) + "." + info->name();
+  for (char& c : test)
+    if (c == '/') c = '_';
+  return testing::TempDir() + test + "." + name;
+}
+
 }  // namespace vesselmesh::test
 
 /// Declares `var` as the path of a shared data file, or skips the test when ../shared/data lacks it.

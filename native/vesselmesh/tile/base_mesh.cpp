@@ -21,6 +21,10 @@ namespace {
 
 using Quad = std::array<int32_t, 4>;
 
+/// A branch's point where it turns by more than this is tiled as a joint (see cut_at_corners).
+constexpr double kCornerJointDegrees = 120;
+const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
+
 /// Ways a tunnel is turned (each from where the patch's squares then stand) before its loop is given up.
 constexpr int kTurns = 3;
 
@@ -81,19 +85,21 @@ struct Patch {
 
 class Tiler {
  public:
-  Tiler(const CenterlineGraph& g, const TileOptions& o) : g_(g), opt_(o), joints_(g.points.size()) {
-    for (const Branch& b : g.branches) curves_.push_back(branch_curve(g, b));
-    kind_.assign(g.branches.size(), Kind::tube);
-    shared_at_.assign(g.branches.size(), 0.0);
-    shared_up_.assign(g.branches.size(), Vec3::Zero());
-    shared_vertex_.assign(g.branches.size(), -1);
-    tunnel_.resize(g.branches.size());
+  Tiler(const CenterlineGraph& g, const TileOptions& o)
+      : g_(g), opt_(o), joints_(g.points.size()), corner_(g.points.size(), 0) {
+    cut_at_corners();
+    for (const Branch& b : branches_) curves_.push_back(branch_curve(g, b));
+    kind_.assign(branches_.size(), Kind::tube);
+    shared_at_.assign(branches_.size(), 0.0);
+    shared_up_.assign(branches_.size(), Vec3::Zero());
+    shared_vertex_.assign(branches_.size(), -1);
+    tunnel_.resize(branches_.size());
   }
 
   BaseMesh run() {
     find_patches();
     for (const Patch& p : patches_) build_patch(p);
-    for (std::size_t b = 0; b < g_.branches.size(); ++b) {
+    for (std::size_t b = 0; b < branches_.size(); ++b) {
       if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
       if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
     }
@@ -104,7 +110,9 @@ class Tiler {
  private:
   const CenterlineGraph& g_;
   const TileOptions& opt_;
-  UnionFind joints_;  // joints that share a patch
+  UnionFind joints_;              // joints that share a patch
+  std::vector<char> corner_;      // per point: a sharp corner, tiled as a joint of two branches
+  std::vector<Branch> branches_;  // the graph's branches, cut at the corners
   std::vector<BranchCurve> curves_;
   std::vector<Kind> kind_;
   std::vector<double> shared_at_;       // shared: arc position of the square from the branch's start
@@ -116,9 +124,39 @@ class Tiler {
   std::vector<Patch> patches_;
   BaseMesh mesh_;
 
-  bool is_joint(int32_t v) const { return g_.degree(v) >= 3; }
-  int32_t first_point(int32_t b) const { return g_.branches[b].points.front(); }
-  int32_t last_point(int32_t b) const { return g_.branches[b].points.back(); }
+  bool is_joint(int32_t v) const { return g_.degree(v) >= 3 || corner_[v]; }
+  int32_t first_point(int32_t b) const { return branches_[b].points.front(); }
+  int32_t last_point(int32_t b) const { return branches_[b].points.back(); }
+
+  /// Cuts the branches at their points that turn by more than kCornerJointDegrees, which then join
+  /// their two pieces like any joint: a convex patch between two squares, pushed along each piece until
+  /// they clear each other. A tube swept round such a corner folds on its inner side (within a few
+  /// radii its two legs overlap, and the smoothed tangent, spanning the legs, leaves the sections near
+  /// the corner leaning along them). Closed rings of degree-2 points are left whole.
+  void cut_at_corners() {
+    for (const Branch& b : g_.branches) {
+      const std::size_t k = b.points.size() - 1;
+      if (b.points.front() == b.points.back() && !is_joint(b.points.front())) {
+        branches_.push_back(b);
+        continue;
+      }
+      std::size_t from = 0;
+      for (std::size_t i = 1; i <= k; ++i) {
+        if (i < k) {
+          const Vec3 in = g_.points[b.points[i]] - g_.points[b.points[i - 1]];
+          const Vec3 out = g_.points[b.points[i + 1]] - g_.points[b.points[i]];
+          if (in.dot(out) >= kCornerJointCosine * in.norm() * out.norm()) continue;
+          corner_[b.points[i]] = 1;
+        }
+        Branch piece;
+        piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
+        piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
+        branches_.push_back(std::move(piece));
+        from = i;
+      }
+    }
+  }
+
   double scale() const { return opt_.radius_scale; }
 
   /// The square of `e` at arc distance t from its joint (up-vector still to be chosen). A tunnel's
@@ -316,7 +354,7 @@ class Tiler {
         }
       }
       if (changed) continue;
-      for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+      for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
         const int32_t b = static_cast<int32_t>(bi);
         if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
             (head_[b] < 0 && tail_[b] < 0))
@@ -414,8 +452,8 @@ class Tiler {
     ends_.clear();
     patches_.clear();
     patch_of_end_.clear();
-    head_.assign(g_.branches.size(), -1);
-    tail_.assign(g_.branches.size(), -1);
+    head_.assign(branches_.size(), -1);
+    tail_.assign(branches_.size(), -1);
     std::vector<int32_t> patch_of(g_.points.size(), -1);
     auto patch_for = [&](int32_t v) {
       int32_t& id = patch_of[joints_.find(v)];
@@ -424,7 +462,7 @@ class Tiler {
     };
     for (int32_t v = 0; v < static_cast<int32_t>(g_.points.size()); ++v)
       if (is_joint(v)) patches_[patch_for(v)].joints.push_back(v);
-    for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
       const int32_t b = static_cast<int32_t>(bi);
       if (kind_[b] == Kind::swallowed) continue;
       for (bool at_start : {true, false}) {
@@ -447,10 +485,10 @@ class Tiler {
   /// in each patch) between its joints. Centroid and plane are those of the loop's edges, weighted by length.
   void find_tunnel_holes() {
     std::map<int32_t, std::vector<int32_t>> swallowed_at;  // joint → swallowed branches that meet it
-    for (std::size_t b = 0; b < g_.branches.size(); ++b)
+    for (std::size_t b = 0; b < branches_.size(); ++b)
       if (kind_[b] == Kind::swallowed)
         for (int32_t v : {first_point(b), last_point(b)}) swallowed_at[v].push_back(static_cast<int32_t>(b));
-    for (std::size_t bi = 0; bi < g_.branches.size(); ++bi) {
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
       if (kind_[bi] != Kind::tunnel) continue;
       const int32_t b = static_cast<int32_t>(bi);
       // Breadth-first from the branch's last point through the tree to its first.
