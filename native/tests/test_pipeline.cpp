@@ -247,7 +247,7 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedUntangled,
                                          SharedCase{"vesselgraph-demo/vertices.csv", false}),
                          case_name);
 
-// Not met yet (level 2 figures of mesh_at). brava-bg0003 is a tree whose input tubes overlap: its 510
+// Not met yet (level 2 figures of mesh_at). brava-bg0003 is a tree whose input tubes overlap: its 507
 // pairs (600 before the fit parted side-by-side tubes) all lie where they do, but a tree must have none.
 // neuron-hemibrain-da1: 239 of its 242 pairs lie outside overlapping input tubes, among very thin
 // branches most of which are too short for a tube. Run with --gtest_also_run_disabled_tests.
