@@ -234,11 +234,7 @@ inline std::vector<Named> joint_kinds() {
       {"ring_between_branches", ring_between_branches, 1},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius",
-       [](double s) {
-         return star({{8, 0, 1}, {8, 180, 1}}, s);
-       },
-       0},
+      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
