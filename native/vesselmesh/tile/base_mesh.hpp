@@ -32,8 +32,10 @@ struct BaseMesh {
   std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
   std::vector<Tri> triangles;                 ///< joint patches
   int64_t sections = 0;                       ///< cross-sections, joint squares included
-  int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
-  int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
+  int64_t joints = 0;             ///< joint patches (clusters of joints too close to part; a sharp corner
+                                  ///< of a branch is tiled as a joint too)
+  int64_t absorbed_branches = 0;  ///< branches (pieces, where sharp corners cut them) too short for a
+                                  ///< tube, inside a joint patch
   int64_t tunnels = 0;                        ///< of those, loops closed inside a patch, through it
 };
 
