@@ -5,7 +5,8 @@
 // a tube is an annulus glued to two square loops; a cap is a disc), so the result has one component
 // per centerline component and genus equal to the number of independent loops. A loop too short to
 // part closes inside one patch as a tunnel: an annulus from one square hole of the hull to another,
-// straight through the patch.
+// straight through the patch. A branch's sharp corner (a turn over 120°) is tiled as a joint of its two
+// pieces: its patch counts in `joints`, and its pieces count as branches in `absorbed_branches`.
 
 #include <array>
 #include <cstdint>
@@ -32,10 +33,8 @@ struct BaseMesh {
   std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
   std::vector<Tri> triangles;                 ///< joint patches
   int64_t sections = 0;                       ///< cross-sections, joint squares included
-  int64_t joints = 0;             ///< joint patches (clusters of joints too close to part; a sharp corner
-                                  ///< of a branch is tiled as a joint too)
-  int64_t absorbed_branches = 0;  ///< branches (pieces, where sharp corners cut them) too short for a
-                                  ///< tube, inside a joint patch
+  int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
+  int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
   int64_t tunnels = 0;                        ///< of those, loops closed inside a patch, through it
 };
 
