@@ -7,11 +7,11 @@ from .. import compat
 COLOR_ATTRIBUTE = "curvature_color"
 
 
-def write_surface(mesh, vertices, faces, edges):
+def write_surface(mesh, vertices, faces, list_edges):
     """Replaces the geometry of mesh (keeping its name, materials and users) by a smooth-shaded triangle
-    surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous; edges() returns their edges as
+    surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous; list_edges() returns their edges as
     vesselmesh_core.edges gives them (edges (E,2), corner_edges (F,3) int32). Handing Blender the edges
-    spares it hashing them (calc_edges), the largest part of building a big mesh; edges() is called once
+    spares it hashing them (calc_edges), the largest part of building a big mesh; list_edges() is called once
     the vertices and faces are written, so that a worker can list them meanwhile."""
     mesh.clear_geometry()
     mesh.vertices.add(len(vertices))
@@ -19,7 +19,7 @@ def write_surface(mesh, vertices, faces, edges):
     mesh.polygons.add(len(faces))
     compat.set_positions(mesh, vertices.ravel())
     compat.set_faces(mesh, faces)
-    edges, corner_edges = edges()
+    edges, corner_edges = list_edges()
     mesh.edges.add(len(edges))
     compat.set_edges(mesh, edges, corner_edges)
     compat.shade_smooth(mesh)

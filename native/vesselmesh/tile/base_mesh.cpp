@@ -765,9 +765,10 @@ class Tiler {
   /// within a few radii), its terminal ends face along the chord between the two, or along the joint
   /// square at its other end: a straight piece with parallel squares cannot fold.
   void unfold_ends(std::vector<Section>& sections, bool free_front, bool free_back) const {
+    if (sections.size() != 2) return;
     Section &a = sections.front(), &b = sections.back();
     const Vec3 chord = b.center - a.center;
-    if (sections.size() != 2 || !(chord.norm() > 0) || !crosses(a, b)) return;
+    if (!(chord.norm() > 0) || !crosses(a, b)) return;
     if (free_front) a.normal = chord.normalized();
     if (free_back) b.normal = chord.normalized();
     if (crosses(a, b) && free_front != free_back)
