@@ -55,9 +55,14 @@ class MeshJobRunner:
     def _finish(self, context):
         try:
             surface = self.finish(context, self._job)
+            # Blender's first evaluation of the new surface copies it whole: done here, while the job still
+            # holds freed memory (MeshJob), it reuses the pages the core let go of.
+            context.view_layer.update()
         except (ValueError, RuntimeError) as error:
             self.report({"ERROR"}, str(error))
             return {"CANCELLED"}
+        finally:
+            self._job.close()
         stats = json.loads(surface.vesselmesh.stats)
         self.report({"INFO"}, f"{surface.name}: {stats['triangles']:,} triangles in {stats['wall_seconds']:.2f} s "
                               f"(core {stats['seconds']:.2f} s)")

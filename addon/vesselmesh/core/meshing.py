@@ -51,10 +51,15 @@ class MeshJob:
     surface's curvature and colours it, when `color` asks for that: the measure, colour map and percentile
     of colors.color_by (None for no curvature). Blender builds the mesh from the surface and its edges
     while the curvature is still being estimated; the main thread then only hands Blender the colours.
+
+    Until close(), the job holds the process's freed memory (vesselmesh_core.FreedMemoryHold): Blender's
+    allocator would hand the pages of each big array back at once, and the core and Blender's mesh filling
+    would fault in fresh ones, twice as slow.
     """
 
     def __init__(self, graph, options, color):
         self._color = color
+        self._memory = core().FreedMemoryHold()
         pool = ThreadPoolExecutor(max_workers=2, thread_name_prefix="vesselmesh")
         self._surface = pool.submit(core().mesh, graph, **options)
         self._edges = pool.submit(self._list_edges)
@@ -86,6 +91,11 @@ class MeshJob:
         """Drops the results; a run already under way finishes in its thread and is discarded."""
         for f in self._futures():
             f.cancel()
+        self.close()
+
+    def close(self):
+        """Lets the allocator hand back the memory the job freed; once its results are in the scene."""
+        self._memory.release()
 
     def surface(self):
         """Waits for the surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous (ready for

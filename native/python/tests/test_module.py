@@ -214,3 +214,12 @@ def test_surface_functions_take_faces_of_any_integer_type_and_name_bad_ones(proj
         vm.curvature(vertices, [["a", "b", "c"]])
     with pytest.raises(vm.InputError, match="shape"):
         vm.check(vertices, faces[:, :2])
+
+
+def test_holding_freed_memory_is_harmless_where_the_allocator_is_not_jemalloc(project_data):
+    assert not vm.FreedMemoryHold.supported  # /usr/bin/python3 allocates with glibc's malloc
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    with vm.FreedMemoryHold():
+        held = vm.mesh(graph, levels=1)
+    plain = vm.mesh(graph, levels=1)
+    np.testing.assert_array_equal(held["faces"], plain["faces"])
