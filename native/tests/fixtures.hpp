@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vesselmesh/centerline.hpp"
@@ -210,6 +211,21 @@ inline CenterlineData u_turn(double scale) {
   return d;
 }
 
+/// A hairpin drawn over several short edges, none turning by more than 93°: 26 radii down, round
+/// within 3 radii, 11 back up, radius 1.3 growing to 3.2 (from a random tree whose tube cut straight
+/// across its bend).
+inline CenterlineData hairpin_over_short_edges(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 1.2887 * scale);
+  const std::vector<std::pair<Vec3, double>> path = {
+      {{-7.7240, -24.6253, -3.4255}, 1.2571}, {{-8.2709, -28.3638, -3.8469}, 1.1667},
+      {{-8.1104, -28.7609, -3.9708}, 1.5430}, {{-8.0138, -29.2563, -4.0675}, 1.6246},
+      {{-6.3433, -28.8746, -3.8442}, 2.0921}, {{-2.0040, -21.8723, 0.6818}, 2.3593},
+      {{-1.0602, -19.2343, 2.3683}, 2.8101},  {{-0.5734, -17.5955, 3.5039}, 3.2318}};
+  int32_t last = 0;
+  for (const auto& [p, r] : path) last = run(d, last, scale * p, 1, r * scale);
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
@@ -238,6 +254,7 @@ inline std::vector<Named> joint_kinds() {
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
+      {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
   };
 }
 

@@ -487,6 +487,37 @@ TEST(SelfIntersections, ABranchComingBackThroughItsNeighbourNearTheirJointOverla
   }
 }
 
+TEST(SelfIntersections, ABranchComingBackOntoItselfOverlapsTheInputButNotWhereItMerelyTurns) {
+  for (double s : kScales) {
+    // one branch along x, round a square 10 across, and back down along y through its own start, 0.5 off
+    const TriMesh crossing = merged(closed_tube(Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, s, 40, 24),
+                                    closed_tube(Vec3(0, 10, 0.5) * s, Vec3(0, -10, 0.5) * s, s, 40, 24));
+    CenterlineData d;
+    d.points = {Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, Vec3(10, 10, 0) * s, Vec3(0, 10, 0.5) * s,
+                Vec3(0, -10, 0.5) * s};
+    d.radius.assign(d.points.size(), s);
+    d.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 4}};
+    const CenterlineGraph g = build_graph(d);
+    ASSERT_EQ(g.branches.size(), 1u);
+    const IntersectionReport r = find_self_intersections(crossing, &g);
+    EXPECT_GT(r.pairs, 0) << s;
+    EXPECT_EQ(r.pairs_in_overlapping_tubes, r.pairs) << s;
+
+    // one branch turning a right angle at the origin: its two tubes pushed into each other there are the
+    // mesher's fault
+    const TriMesh corner = merged(closed_tube(Vec3(-10, 0, 0) * s, Vec3(1, 0, 0) * s, s, 40, 24),
+                                  closed_tube(Vec3(0, -1, 0) * s, Vec3(0, 10, 0) * s, s, 40, 24));
+    CenterlineData c;
+    c.points = {Vec3(-10, 0, 0) * s, Vec3(0, 0, 0) * s, Vec3(0, 10, 0) * s};
+    c.radius.assign(c.points.size(), s);
+    c.edges = {{0, 1}, {1, 2}};
+    const CenterlineGraph h = build_graph(c);
+    const IntersectionReport t = find_self_intersections(corner, &h);
+    EXPECT_GT(t.pairs, 0) << s;
+    EXPECT_EQ(t.pairs_in_overlapping_tubes, 0) << s;
+  }
+}
+
 // --- quality ----------------------------------------------------------------------------------------
 
 TEST(TriangleQuality, EquilateralTriangleHasRadiusRatioTwoAndAnglesOfSixtyDegrees) {

@@ -80,7 +80,8 @@ TopologyReport check_topology(const TriMesh& mesh);
 /// With a centerline, an intersecting pair is classed as overlapping tubes when the two triangles lie
 /// near (centroid within 1.5 local radii of the axis) edges of two different branches whose round
 /// cones overlap: the axes' closest points are nearer than the sum of the radii there, leaving out
-/// the parts within 3 radii of a joint the two branches share (where they are meant to meet).
+/// the parts within 3 radii of a joint the two branches share (where they are meant to meet); or near
+/// two edges of one branch whose cones overlap at parts more than 3 radii apart along the branch.
 IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr);
 QualityReport triangle_quality(const TriMesh& mesh);
 /// Signed distance of each vertex to the union of the centerline edges' round cones (two spheres and

@@ -127,7 +127,8 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       caps_(terminal_caps(g)),
       cap_bvh_(cap_boxes(caps_)),
       crowded_(cones_.size(), 0),
-      leads_out_(cones_.size(), {0, 0}) {
+      leads_out_(cones_.size(), {0, 0}),
+      arc_(cones_.size(), {0.0, 0.0}) {
   // A branch's edges from each of its ends for as long as they start within the end's reach.
   for (const Branch& b : g.branches) {
     const std::size_t n = b.edges.size();
@@ -138,6 +139,14 @@ RoundCones::RoundCones(const CenterlineGraph& g)
     for (std::size_t i = n;
          i > 0 && (g.points[b.points[i]] - g.points[last]).norm() < kJointReach * g.radius[last]; --i)
       leads_out_[b.edges[i - 1]][1] = 1;
+    double arc = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int32_t e = b.edges[i];
+      const double next = arc + (g.points[b.points[i + 1]] - g.points[b.points[i]]).norm();
+      arc_[e] =
+          g.edges[e][0] == b.points[i] ? std::array<double, 2>{arc, next} : std::array<double, 2>{next, arc};
+      arc = next;
+    }
   }
   near_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
     const RoundCone& k = cones_[e];
@@ -235,7 +244,35 @@ bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
   const std::vector<int32_t> near_p = near_edges(p), near_q = near_edges(q);
   for (int32_t e : near_p)
     for (int32_t f : near_q)
-      if (cones_[e].branch != cones_[f].branch && overlap(e, f)) return true;
+      if (cones_[e].branch != cones_[f].branch ? overlap(e, f) : folds_onto(e, f)) return true;
+  return false;
+}
+
+// Whether two edges of one branch overlap where the branch comes back onto itself: parts of them that lie
+// more than kJointReach radii (of each) apart along the branch come within the sum of their radii. Parts
+// nearer along it merely turn together, as two branches merely meet within that reach of their joint.
+// Each edge is cut into at most 8 pieces, compared pairwise by their nearest points.
+bool RoundCones::folds_onto(int32_t e, int32_t f) const {
+  if (e == f) return false;
+  const Branch& b = graph_.branches[cones_[e].branch];
+  const bool ring = b.points.front() == b.points.back();
+  const double length = std::max(
+      {arc_[b.edges.front()][0], arc_[b.edges.front()][1], arc_[b.edges.back()][0], arc_[b.edges.back()][1]});
+  const RoundCone& k = cones_[e];
+  const RoundCone& l = cones_[f];
+  constexpr int kPieces = 8;
+  for (int i = 0; i < kPieces; ++i)
+    for (int j = 0; j < kPieces; ++j) {
+      const double s0 = double(i) / kPieces, s1 = double(i + 1) / kPieces;
+      const double t0 = double(j) / kPieces, t1 = double(j + 1) / kPieces;
+      const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
+      const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
+      const double rs = k.radius_at(s), rt = l.radius_at(t);
+      if ((k.point_at(s) - l.point_at(t)).norm() >= rs + rt) continue;
+      const double apart =
+          std::abs(arc_[e][0] + s * (arc_[e][1] - arc_[e][0]) - arc_[f][0] - t * (arc_[f][1] - arc_[f][0]));
+      if (std::min(apart, ring ? length - apart : apart) > kJointReach * (rs + rt)) return true;
+    }
   return false;
 }
 

@@ -76,7 +76,8 @@ class RoundCones {
   /// True when `p` lies inside a cone of a branch other than `branch`.
   bool inside_other_branch(const Vec3& p, int32_t branch) const;
 
-  /// True when `p` and `q` are near edges of two different branches whose tubes overlap.
+  /// True when `p` and `q` are near edges of two different branches whose tubes overlap, or of one
+  /// branch that comes back onto itself (folds_onto).
   bool in_overlapping_tubes(const Vec3& p, const Vec3& q) const;
 
   /// True near a terminal's end, where the surface is capped rather than round: within 2 radii of the
@@ -86,6 +87,7 @@ class RoundCones {
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f, double margin = 0) const;
+  bool folds_onto(int32_t e, int32_t f) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;
 
@@ -100,6 +102,7 @@ class RoundCones {
   /// Per cone: whether it is among the edges leading out of its branch's first (0) or last (1) point,
   /// those that start within the point's joint reach.
   std::vector<std::array<char, 2>> leads_out_;
+  std::vector<std::array<double, 2>> arc_;  ///< per cone: arc length along its branch at c0 and c1
 };
 
 }  // namespace vesselmesh

@@ -128,11 +128,11 @@ class Tiler {
   int32_t first_point(int32_t b) const { return branches_[b].points.front(); }
   int32_t last_point(int32_t b) const { return branches_[b].points.back(); }
 
-  /// Cuts the branches at their points that turn by more than kCornerJointDegrees, which then join
-  /// their two pieces like any joint: a convex patch between two squares, pushed along each piece until
-  /// they clear each other. A tube swept round such a corner folds on its inner side (within a few
-  /// radii its two legs overlap, and the smoothed tangent, spanning the legs, leaves the sections near
-  /// the corner leaning along them). Closed rings of degree-2 points are left whole.
+  /// Cuts the branches at their sharp corners (mark_corners), which then join their two pieces like any
+  /// joint: a convex patch between two squares, pushed along each piece until they clear each other. A
+  /// tube swept round such a corner folds on its inner side (within a few radii its two legs overlap, and
+  /// the smoothed tangent, spanning the legs, leaves the sections near the corner leaning along them).
+  /// Closed rings of degree-2 points are left whole.
   void cut_at_corners() {
     for (const Branch& b : g_.branches) {
       const std::size_t k = b.points.size() - 1;
@@ -140,20 +140,57 @@ class Tiler {
         branches_.push_back(b);
         continue;
       }
+      mark_corners(b);
       std::size_t from = 0;
       for (std::size_t i = 1; i <= k; ++i) {
-        if (i < k) {
-          const Vec3 in = g_.points[b.points[i]] - g_.points[b.points[i - 1]];
-          const Vec3 out = g_.points[b.points[i + 1]] - g_.points[b.points[i]];
-          if (in.dot(out) >= kCornerJointCosine * in.norm() * out.norm()) continue;
-          corner_[b.points[i]] = 1;
-        }
+        if (i < k && !corner_[b.points[i]]) continue;
         Branch piece;
         piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
         piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
         branches_.push_back(std::move(piece));
         from = i;
       }
+    }
+  }
+
+  /// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
+  /// the branch turns that far within two radii either side of a point (a hairpin drawn over several
+  /// short edges: bent tighter than its radius), the sharpest such point, none within two radii of
+  /// another corner.
+  void mark_corners(const Branch& b) {
+    const std::size_t k = b.points.size() - 1;
+    auto point = [&](std::size_t i) { return g_.points[b.points[i]]; };
+    std::vector<double> arc(k + 1, 0.0);
+    for (std::size_t i = 1; i <= k; ++i) arc[i] = arc[i - 1] + (point(i) - point(i - 1)).norm();
+    auto at = [&](double s) {  // the polyline at arc length s, clamped to the branch
+      s = std::clamp(s, 0.0, arc[k]);
+      const std::size_t i =
+          std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), k) - 1;
+      const double f = arc[i + 1] > arc[i] ? (s - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
+      return Vec3((1 - f) * point(i) + f * point(i + 1));
+    };
+    auto sharp = [](const Vec3& in, const Vec3& out) {
+      return in.dot(out) < kCornerJointCosine * in.norm() * out.norm();
+    };
+    std::vector<std::pair<double, std::size_t>> bends;  // (cosine of the turn within reach, point)
+    for (std::size_t i = 1; i < k; ++i) {
+      if (sharp(point(i) - point(i - 1), point(i + 1) - point(i))) {
+        corner_[b.points[i]] = 1;
+        continue;
+      }
+      const double reach = 2 * g_.radius[b.points[i]];
+      const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
+      if (sharp(in, out)) bends.push_back({in.normalized().dot(out.normalized()), i});
+    }
+    std::sort(bends.begin(), bends.end());
+    for (const auto& [cosine, i] : bends) {
+      const double reach = 2 * g_.radius[b.points[i]];
+      bool clear = true;
+      for (std::size_t j = i; clear && j > 1 && arc[i] - arc[j - 1] <= reach; --j)
+        clear = !corner_[b.points[j - 1]];
+      for (std::size_t j = i; clear && j + 1 < k && arc[j + 1] - arc[i] <= reach; ++j)
+        clear = !corner_[b.points[j + 1]];
+      if (clear) corner_[b.points[i]] = 1;
     }
   }
 

@@ -5,8 +5,9 @@
 // a tube is an annulus glued to two square loops; a cap is a disc), so the result has one component
 // per centerline component and genus equal to the number of independent loops. A loop too short to
 // part closes inside one patch as a tunnel: an annulus from one square hole of the hull to another,
-// straight through the patch. A branch's sharp corner (a turn over 120°) is tiled as a joint of its two
-// pieces: its patch counts in `joints`, and its pieces count as branches in `absorbed_branches`.
+// straight through the patch. A branch's sharp corner (a turn over 120° at one point, or within two
+// radii either side of one) is tiled as a joint of its two pieces: its patch counts in `joints`, and
+// its pieces count as branches in `absorbed_branches`.
 
 #include <array>
 #include <cstdint>
