@@ -83,3 +83,13 @@ def test_default_settings_are_the_cores_defaults(project_data):
     vertices, faces = arrays(surface)
     np.testing.assert_array_equal(faces, expected["faces"])
     np.testing.assert_allclose(vertices, expected["vertices"], rtol=0, atol=1e-6)
+
+
+def test_check_surface_stores_the_checkers_report_on_the_surface(project_data):
+    _, surface = import_file(project_data / "bifurcation.swc")
+    assert bpy.ops.vesselmesh.check() == {"FINISHED"}
+    report = json.loads(surface.vesselmesh.stats)["check"]
+    assert report["closed_manifold"] and report["topology"]["genus"] == 0
+    assert report["intersections"]["pairs"] == 0
+    assert report["fidelity"]["abs_relative_error"]["p95"] < 0.08
+    assert report["fidelity"]["area_off_tubes"] < 0.01

@@ -61,8 +61,10 @@ void print_check(const CheckReport& r, const std::string& file) {
             << "  minimum angle        median " << r.quality.min_angle.median << ", min " << r.quality.min_angle.min
             << " degrees\n";
   if (r.fidelity)
-    std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median << " %, 95th "
-              << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n";
+    std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median
+              << " %, 95th " << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n"
+              << "  area off the tubes   " << 100 * r.fidelity->area_off_tubes
+              << " % (faces centred over half a radius off them)\n";
 }
 
 }  // namespace

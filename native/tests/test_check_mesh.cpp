@@ -627,6 +627,54 @@ TEST(RadiusFidelity, UnionOfConesTakesTheSmallestSignedDistance) {
   }
 }
 
+// A ring of radius 10 with a tube of radius 1 round it, meshed two ways: as a torus; and as a band round
+// the tube's outer side closed by two fans of triangles across the ring's hole, every vertex on the tube.
+// The vertices cannot tell the two apart; the area off the tubes can.
+TEST(RadiusFidelity, FacesSpanningAcrossTheTubesAreAreaOffThemThoughTheirCornersLieOnThem) {
+  constexpr int n = 64, around = 16;
+  for (double s : kScales) {
+    CenterlineData d;
+    auto ring = [&](double radius, double z, int i) {
+      const double a = 2 * M_PI * i / n;
+      return Vec3(s * radius * std::cos(a), s * radius * std::sin(a), s * z);
+    };
+    for (int i = 0; i < n; ++i) {
+      d.points.push_back(ring(10, 0, i));
+      d.radius.push_back(s);
+      d.edges.push_back({i, (i + 1) % n});
+    }
+    const CenterlineGraph g = build_graph(d);
+
+    TriMesh torus;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < around; ++j) {
+        const double b = 2 * M_PI * j / around;
+        torus.vertices.push_back(ring(10 + std::cos(b), std::sin(b), i));
+        const int32_t next = ((i + 1) % n) * around;
+        add_quad(torus, i * around + j, i * around + (j + 1) % around, next + (j + 1) % around, next + j);
+      }
+    const FidelityReport round = radius_fidelity(torus, g);
+    EXPECT_LT(round.abs_relative_error.max, 0.05) << s;
+    EXPECT_EQ(round.area_off_tubes, 0) << s;
+
+    TriMesh spanning;
+    for (int i = 0; i < n; ++i)
+      spanning.vertices.insert(spanning.vertices.end(), {ring(10, 1, i), ring(11, 0, i), ring(10, -1, i)});
+    for (int i = 0; i < n; ++i) {
+      const int32_t a = 3 * i, b = 3 * ((i + 1) % n);
+      add_quad(spanning, a, a + 1, b + 1, b);
+      add_quad(spanning, a + 1, a + 2, b + 2, b + 1);
+    }
+    for (int32_t i = 1; i + 1 < n; ++i) {
+      spanning.faces.push_back({0, 3 * i, 3 * (i + 1)});
+      spanning.faces.push_back({2, 3 * (i + 1) + 2, 3 * i + 2});
+    }
+    const FidelityReport flat = radius_fidelity(spanning, g);
+    EXPECT_LT(flat.abs_relative_error.max, 0.05) << s;
+    EXPECT_GT(flat.area_off_tubes, 0.6) << s;
+  }
+}
+
 // --- the whole report -------------------------------------------------------------------------------
 
 // --- distance between surfaces ----------------------------------------------------------------------

@@ -285,18 +285,28 @@ TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedSurfaceAbsorbing, testing::ValuesIn(kAbsorbingCases), case_name);
 
-TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEightPercentP95) {
+TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEightPercentP95OnTheirTubes) {
   SHARED_DATA_OR_SKIP(path, "human-brain-arteries/arteries_smooth.vtk");
   const FidelityReport f = uniform_level_two_fidelity(path);
   EXPECT_LE(f.abs_relative_error.median, 0.02);  // 0.011 measured
   EXPECT_LE(f.abs_relative_error.p95, 0.08);     // 0.028 measured (0.052 without the fit)
+  EXPECT_LE(f.area_off_tubes, 0.01);             // 0.0016 measured
 }
 
-TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95) {
+TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95OnItsTubes) {
   SHARED_DATA_OR_SKIP(path, "brava-bg0003/BG0003_ColorCoded.CNG.swc");
   const FidelityReport f = uniform_level_two_fidelity(path);
   // 0.017 and 0.030 measured; without the fit 0.020 and 0.123, too thin on the outer side of the 50° to
   // 90° corners of a tracing whose points are 4.4 radii apart.
   EXPECT_LE(f.abs_relative_error.median, 0.02);
   EXPECT_LE(f.abs_relative_error.p95, 0.08);
+  EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0034 measured
+}
+
+// Not met yet: on neuron-hemibrain-da1 the convex hulls of merged joint patches span the bends of its
+// chains of short fat branches, over half of the surface's area (0.55 measured), though every vertex
+// lies within 3 % of the tubes at the 95th percentile. Run with --gtest_also_run_disabled_tests.
+TEST(SharedFidelity, DISABLED_HemibrainSurfaceFollowsItsTubes) {
+  SHARED_DATA_OR_SKIP(path, "neuron-hemibrain-da1/1734350788.swc");
+  EXPECT_LE(uniform_level_two_fidelity(path).area_off_tubes, 0.01);
 }

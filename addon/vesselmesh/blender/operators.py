@@ -234,7 +234,8 @@ class VESSELMESH_OT_check(bpy.types.Operator):
         level = "INFO" if report["closed_manifold"] else "WARNING"
         self.report({level}, f"{surface.name}: {'closed manifold' if report['closed_manifold'] else 'NOT closed'}, "
                              f"genus {topology['genus']}, {report['intersections']['pairs']} crossing triangle pairs, "
-                             f"radius error median {report['fidelity']['abs_relative_error']['median']:.1%}")
+                             f"radius error median {report['fidelity']['abs_relative_error']['median']:.1%}, "
+                             f"{report['fidelity']['area_off_tubes']:.1%} of its area off the tubes")
         return {"FINISHED"}
 
 

@@ -84,6 +84,7 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
                       + f", genus {check['topology']['genus']}")
             col.label(text=f"{check['intersections']['pairs']} crossing triangle pairs")
             col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
+            col.label(text=f"Area off the tubes: {check['fidelity']['area_off_tubes']:.1%}")
         layout.operator("vesselmesh.check", icon="CHECKMARK")
 
 

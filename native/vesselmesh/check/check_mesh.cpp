@@ -22,6 +22,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDegenerateArea = 1e-14;  // area / (longest edge)² below which a face has no area
 constexpr std::size_t kMaxExamples = 20;
+constexpr double kOffTube = 0.5;  // local radii off the tubes where a face's centroid counts as off them
 
 void require_valid_indices(const TriMesh& mesh) {
   const auto n = static_cast<int64_t>(mesh.vertices.size());
@@ -220,6 +221,7 @@ QualityReport triangle_quality(const TriMesh& mesh) {
 }
 
 FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline) {
+  require_valid_indices(mesh);
   FidelityReport r;
   if (centerline.edges.empty()) return r;
   const RoundCones cones(centerline);
@@ -237,6 +239,18 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   }
   r.relative_error = distribution(std::move(signed_error));
   r.abs_relative_error = distribution(std::move(abs_error));
+  double area = 0, off = 0;
+  int32_t hint = -1;  // faces come in runs along the surface: the last face's cone is a good first guess
+  for (const Tri& f : mesh.faces) {
+    const Triangle t = corners(mesh.vertices, f);
+    const Vec3 centroid = (t[0] + t[1] + t[2]) / 3;
+    if (cones.near_cap(centroid)) continue;
+    const double a = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
+    const ConeDistance d = cones.nearest(centroid, &hint);
+    area += a;
+    if (std::abs(d.distance) > kOffTube * d.radius) off += a;
+  }
+  r.area_off_tubes = area > 0 ? off / area : 0.0;
   return r;
 }
 
@@ -314,6 +328,7 @@ std::string report_json(const CheckReport& report, int indent) {
     fidelity["abs_relative_error"] = distribution_json(report.fidelity->abs_relative_error);
     fidelity["relative_error"] = distribution_json(report.fidelity->relative_error);
     fidelity["excluded_cap_vertices"] = report.fidelity->excluded_cap_vertices;
+    fidelity["area_off_tubes"] = report.fidelity->area_off_tubes;
   }
   return j.dump(indent);
 }

@@ -62,6 +62,11 @@ struct FidelityReport {
   Distribution abs_relative_error;  ///< |signed distance to the union of round cones| / local radius
   Distribution relative_error;      ///< signed (negative = inside, too thin)
   int64_t excluded_cap_vertices = 0;
+  /// Share of the surface's area (faces at the caps left out) on faces whose centroid lies more than half
+  /// the local radius off the tubes, in or out: surface spanning across the tubes rather than following
+  /// them (a hull bridging a bend, a triangle from one tube to another), which the vertices' errors miss
+  /// when every corner lies on a tube.
+  double area_off_tubes = 0;
   std::vector<float> per_vertex;    ///< signed relative error of each vertex, NaN for cap vertices
 };
 
@@ -72,8 +77,7 @@ struct CheckReport {
   std::optional<FidelityReport> fidelity;  ///< only when a centerline is given
 };
 
-// The functions that read faces (all but radius_fidelity) throw std::invalid_argument when a face
-// refers to a vertex the mesh does not have.
+// Each function throws std::invalid_argument when a face refers to a vertex the mesh does not have.
 
 TopologyReport check_topology(const TriMesh& mesh);
 /// Exact-predicate triangle–triangle tests on the pairs a bounding-volume hierarchy proposes.
@@ -87,7 +91,8 @@ QualityReport triangle_quality(const TriMesh& mesh);
 /// Signed distance of each vertex to the union of the centerline edges' round cones (two spheres and
 /// their tangent cone; the minimum over edges), divided by the local radius (that of the cone where
 /// the vertex is closest), leaving out cap vertices: those within 2 radii of a terminal and within
-/// one radius of its section along its axis, or beyond it.
+/// one radius of its section along its axis, or beyond it. The same at the face centroids gives the
+/// area off the tubes.
 FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline);
 
 /// How far one surface strays from another, relative to the vessel's size: the distance from each sample
