@@ -35,15 +35,18 @@ std::mutex hold_mutex;
 int holds = 0;
 std::vector<Decay> saved;
 
+/// jemalloc's name for an arena's decay time; `which` is "dirty" or "muzzy".
+std::string decay_name(unsigned arena, const char* which) {
+  return "arena." + std::to_string(arena) + "." + which + "_decay_ms";
+}
+
 bool read_decay(unsigned arena, const char* which, std::ptrdiff_t& value) {
-  const std::string name = "arena." + std::to_string(arena) + "." + which + "_decay_ms";
   std::size_t size = sizeof value;
-  return mallctl()(name.c_str(), &value, &size, nullptr, 0) == 0;
+  return mallctl()(decay_name(arena, which).c_str(), &value, &size, nullptr, 0) == 0;
 }
 
 void write_decay(unsigned arena, const char* which, std::ptrdiff_t value) {
-  const std::string name = "arena." + std::to_string(arena) + "." + which + "_decay_ms";
-  mallctl()(name.c_str(), nullptr, nullptr, &value, sizeof value);
+  mallctl()(decay_name(arena, which).c_str(), nullptr, nullptr, &value, sizeof value);
 }
 
 void keep_freed_pages() {

@@ -256,8 +256,7 @@ bool RoundCones::folds_onto(int32_t e, int32_t f) const {
   if (e == f) return false;
   const Branch& b = graph_.branches[cones_[e].branch];
   const bool ring = b.points.front() == b.points.back();
-  const double length = std::max(
-      {arc_[b.edges.front()][0], arc_[b.edges.front()][1], arc_[b.edges.back()][0], arc_[b.edges.back()][1]});
+  const double length = std::max(arc_[b.edges.back()][0], arc_[b.edges.back()][1]);  // the branch's
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   constexpr int kPieces = 8;
