@@ -226,6 +226,22 @@ inline CenterlineData hairpin_over_short_edges(double scale) {
   return d;
 }
 
+/// A trunk of radius 1 along +z with six side branches two radii apart, all on one side, each leaving at
+/// 45° towards the next joint: 1.5 out to radius 0.4, then 6 more to 0.32. As in a neuron's SWC
+/// tracing, each side branch starts at its fork with the trunk's radius, so its first edge is a fat
+/// cone (from neuron-hemibrain-da1, whose dendrites carry side branches one or two radii apart).
+inline CenterlineData side_branches_in_a_row(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -8 * scale), scale);
+  int32_t trunk = run(d, 0, Vec3::Zero(), 4, scale);
+  for (int i = 1; i <= 6; ++i) {
+    trunk = run(d, trunk, Vec3(0, 0, 2 * i * scale), 1, scale);
+    const int32_t out = run(d, trunk, d.points[trunk] + 1.5 * scale * dir(45), 1, 0.4 * scale);
+    run(d, out, d.points[out] + 6 * scale * dir(45), 3, 0.32 * scale);
+  }
+  run(d, trunk, d.points[trunk] + Vec3(0, 0, 8 * scale), 4, scale);
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
@@ -255,6 +271,7 @@ inline std::vector<Named> joint_kinds() {
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
       {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
+      {"side_branches_in_a_row", side_branches_in_a_row, 0},
   };
 }
 

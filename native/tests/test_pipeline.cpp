@@ -90,6 +90,18 @@ TEST(Pipeline, LoopsTooShortToPartKeepTheirHoleAsATunnel) {
   }
 }
 
+TEST(Pipeline, SideBranchesTwoRadiiApartKeepAPatchEachAndTheSurfaceOnTheTubes) {
+  // Each side branch leaves towards the next joint, so only a plane tilted from the trunk's tangent
+  // parts two neighbouring patches; without it all six joints merged into one convex hull, 19 % of
+  // whose area lay over half a radius off the tubes at level 2.
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::side_branches_in_a_row(scale));
+    const MeshResult r = mesh_at(g, 2, Caps::flat, Refinement::uniform);
+    EXPECT_EQ(r.joint_patches, 6) << "scale " << scale;
+    EXPECT_LE(radius_fidelity(r.mesh, g).area_off_tubes, 0.01) << "scale " << scale;
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {
@@ -203,7 +215,7 @@ const SharedCase kSharedCases[] = {
 };
 
 // The looped network where loops can still be absorbed: a loop whose tunnel's mouths cannot clear its
-// patch within 4 loop radii even turned, or come close to another tunnel's, is given up (50 of 53 loops
+// patch within 4 loop radii even turned, or come close to another tunnel's, is given up (51 of 53 loops
 // kept).
 const SharedCase kAbsorbingCases[] = {
     {"vesselgraph-demo/vertices.csv", false},
@@ -244,6 +256,7 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedUntangled,
                                          SharedCase{"vascpy-mouse-vessels/penetrating_artery.vtk", true},
                                          SharedCase{"vascpy-mouse-vessels/test_smaller_vasculature.vtk",
                                                     true},
+                                         SharedCase{"neuron-hemibrain-da1/1734350788.swc", true},
                                          SharedCase{"secomb-rat-cortex-50/network.vtk", false},
                                          SharedCase{"secomb-rat-mesentery/network.vtk", false},
                                          SharedCase{"vesselgraph-demo/vertices.csv", false}),
@@ -257,20 +270,12 @@ TEST(SharedOverlapping, BravaCrossesItselfOnlyWhereItsInputTubesOverlap) {
                                                   /*none_at_all=*/false);
 }
 
-// Not met yet (level 2 figures of mesh_at). brava-bg0003: 609 pairs, all where its input tubes overlap
-// (SharedOverlapping above), but a tree must have none. neuron-hemibrain-da1: 268 of its 273 pairs lie
-// outside overlapping input tubes, on faces of merged joint patches whose convex hulls span the bends of
-// its chains of short fat branches. Run with --gtest_also_run_disabled_tests.
-class SharedTangled : public testing::TestWithParam<SharedCase> {};
-
-TEST_P(SharedTangled, DISABLED_NoSelfIntersectionsOutsideOverlappingInputTubes) {
-  expect_crossings_only_where_input_tubes_overlap(GetParam().file, GetParam().tree);
+// Not met yet (level 2 figures of mesh_at): brava-bg0003 has 611 pairs, all where its input tubes
+// overlap (SharedOverlapping above), but a tree must have none. Run with --gtest_also_run_disabled_tests.
+TEST(SharedTangled, DISABLED_BravaDoesNotCrossItself) {
+  expect_crossings_only_where_input_tubes_overlap("brava-bg0003/BG0003_ColorCoded.CNG.swc",
+                                                  /*none_at_all=*/true);
 }
-
-INSTANTIATE_TEST_SUITE_P(Shared, SharedTangled,
-                         testing::Values(SharedCase{"brava-bg0003/BG0003_ColorCoded.CNG.swc", true},
-                                         SharedCase{"neuron-hemibrain-da1/1734350788.swc", true}),
-                         case_name);
 
 class SharedSurfaceAbsorbing : public testing::TestWithParam<SharedCase> {};
 
@@ -285,7 +290,7 @@ TEST_P(SharedSurfaceAbsorbing, SurfaceIsClosedManifoldWithOneComponentPerInputCo
   }
 }
 
-// Not met yet: vesselgraph-demo has genus 50 of its 53 loops (see kAbsorbingCases).
+// Not met yet: vesselgraph-demo has genus 51 of its 53 loops (see kAbsorbingCases).
 TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
   SHARED_DATA_OR_SKIP(path, GetParam().file);
   const CenterlineGraph g = build_graph(read_centerline(path));
@@ -312,9 +317,10 @@ TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95On
   EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0034 measured
 }
 
-// Not met yet: on neuron-hemibrain-da1 the convex hulls of merged joint patches span the bends of its
-// chains of short fat branches, over half of the surface's area (0.55 measured), though every vertex
-// lies within 3 % of the tubes at the 95th percentile. Run with --gtest_also_run_disabled_tests.
+// Not met yet: on neuron-hemibrain-da1, 4.8 % of the surface's area lies over half a radius off the tubes
+// at level 2, on the convex hulls of joints merged where no square, tilted or not, parts them (chains of
+// fat branches shorter than their radius), though every vertex lies within 3 % of the tubes at the 95th
+// percentile. Run with --gtest_also_run_disabled_tests.
 TEST(SharedFidelity, DISABLED_HemibrainSurfaceFollowsItsTubes) {
   SHARED_DATA_OR_SKIP(path, "neuron-hemibrain-da1/1734350788.swc");
   EXPECT_LE(uniform_level_two_fidelity(path).area_off_tubes, 0.01);

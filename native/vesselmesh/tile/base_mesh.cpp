@@ -28,6 +28,13 @@ const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
 /// Ways a tunnel is turned (each from where the patch's squares then stand) before its loop is given up.
 constexpr int kTurns = 3;
 
+/// A shared square is tried at this many points along its branch, tilted from the tangent by up to this
+/// many steps of 15° (see best_shared_square), and placed again up to this many times, each from where
+/// the squares pushed out round it then stand, before its two joints merge.
+constexpr int kSharedPositions = 15;
+constexpr int kSharedTilts = 3;
+constexpr int kSharedTries = 4;
+
 /// How a branch that meets a joint is built.
 enum class Kind {
   tube,       ///< a square at each joint end, a tube between them
@@ -92,6 +99,8 @@ class Tiler {
     kind_.assign(branches_.size(), Kind::tube);
     shared_at_.assign(branches_.size(), 0.0);
     shared_up_.assign(branches_.size(), Vec3::Zero());
+    shared_normal_.assign(branches_.size(), Vec3::Zero());
+    shared_tries_.assign(branches_.size(), 0);
     shared_vertex_.assign(branches_.size(), -1);
     tunnel_.resize(branches_.size());
   }
@@ -117,6 +126,8 @@ class Tiler {
   std::vector<Kind> kind_;
   std::vector<double> shared_at_;       // shared: arc position of the square from the branch's start
   std::vector<Vec3> shared_up_;         // shared: its up-vector
+  std::vector<Vec3> shared_normal_;     // shared: its normal, seen from the branch's start
+  std::vector<int> shared_tries_;       // how often a shared square has been placed on the branch
   std::vector<int32_t> shared_vertex_;  // shared: first corner vertex, corners as seen from the start
   std::vector<Tunnel> tunnel_;          // tunnel: its hole
   std::vector<End> ends_;
@@ -296,7 +307,10 @@ class Tiler {
         e.t = std::min(travel(e), 0.25 * r * (1 + attempt));
       }
       e.square = square_at(e, e.t);
-      if (kind_[e.branch] == Kind::shared) e.square.up = shared_up_[e.branch];
+      if (kind_[e.branch] == Kind::shared) {
+        e.square.normal = e.at_start ? shared_normal_[e.branch] : -shared_normal_[e.branch];
+        e.square.up = shared_up_[e.branch];
+      }
     }
     for (int iteration = 0; iteration < 1000; ++iteration) {
       orient_squares(p, attempt);
@@ -318,32 +332,40 @@ class Tiler {
   }
 
   /// Where one square on branch b can close both of its joints' patches: its plane must have the
-  /// other squares of the start's patch behind it and those of the end's patch in front. Returns the
-  /// best position's clearance (> 0 when it works) and sets shared_at_[b].
+  /// other squares of the start's patch behind it and those of the end's patch in front. Tried at
+  /// kSharedPositions points along the branch, facing along its tangent or tilted from it by up to
+  /// kSharedTilts steps of 15° towards 8 directions round it: where a side branch leaves one joint
+  /// towards the other, only a tilted plane passes between the two patches. Returns the best
+  /// position's clearance (> 0 when it works) and sets shared_at_[b] and shared_normal_[b].
   double best_shared_square(int32_t b) {
     const BranchCurve& c = curves_[b];
     const Patch& head_patch = patches_[patch_of_end_[head_[b]]];
     const Patch& tail_patch = patches_[patch_of_end_[tail_[b]]];
     double best = -std::numeric_limits<double>::infinity();
-    constexpr int kCandidates = 15;
-    for (int k = 1; k <= kCandidates; ++k) {
-      const double s = c.length() * k / (kCandidates + 1);
+    for (int k = 1; k <= kSharedPositions; ++k) {
+      const double s = c.length() * k / (kSharedPositions + 1);
       const Vec3 center = c.position(s);
       const double r = c.radius_at(s);
-      const Vec3 normal = c.tangent(s);
-      double clearance = std::numeric_limits<double>::infinity();
-      auto consider = [&](const Patch& p, double side) {
-        for (int32_t i : p.ends) {
-          if (ends_[i].branch == b) continue;
-          for (int q = 0; q < 4; ++q)
-            clearance = std::min(clearance, -side * normal.dot(ends_[i].square.corner(q, scale()) - center));
+      const Vec3 tangent = c.tangent(s), across = any_perpendicular(tangent);
+      for (int tilt = 0; tilt <= kSharedTilts; ++tilt)
+        for (int towards = 0; towards < (tilt > 0 ? 8 : 1); ++towards) {
+          const Vec3 axis = rotate(across, tangent, M_PI / 4 * towards);
+          const Vec3 normal = rotate(tangent, axis, M_PI / 12 * tilt);
+          double clearance = std::numeric_limits<double>::infinity();
+          auto consider = [&](const Patch& p, double side) {
+            for (int32_t i : p.ends) {
+              if (ends_[i].branch == b) continue;
+              for (int q = 0; q < 4; ++q)
+                clearance =
+                    std::min(clearance, -side * normal.dot(ends_[i].square.corner(q, scale()) - center));
+            }
+          };
+          consider(head_patch, 1.0);
+          consider(tail_patch, -1.0);
+          // Clear of both patches by a margin.
+          clearance -= 0.1 * scale() * r;
+          if (clearance > best) best = clearance, shared_at_[b] = s, shared_normal_[b] = normal;
         }
-      };
-      consider(head_patch, 1.0);
-      consider(tail_patch, -1.0);
-      // Clear of both patches by a margin.
-      clearance -= 0.1 * scale() * r;
-      if (clearance > best) best = clearance, shared_at_[b] = s;
     }
     return best;
   }
@@ -360,10 +382,11 @@ class Tiler {
   }
 
   /// Groups joints into patches and decides each branch's kind. A branch between two joints too short
-  /// for a tube first tries one shared square; failing that, its joints merge into one patch, or, when
-  /// they share one already, it becomes a tunnel. A branch from a joint to a terminal too short for a
-  /// tube, or without room for one after its square (room_for_tube), becomes a stub. Repeated until
-  /// nothing changes.
+  /// for a tube first tries one shared square (best_shared_square), placed again while the squares
+  /// pushed out round it come to reach across it, up to kSharedTries times; failing that, its joints
+  /// merge into one patch, or, when they share one already, it becomes a tunnel. A branch from a joint
+  /// to a terminal too short for a tube, or without room for one after its square (room_for_tube),
+  /// becomes a stub. Repeated until nothing changes.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
@@ -418,9 +441,9 @@ class Tiler {
           kind_[b] = Kind::tunnel;
           ++mesh_.absorbed_branches;
           ++mesh_.tunnels;
-        } else if (kind_[b] == Kind::tube && best_shared_square(b) > 0) {
+        } else if (shared_tries_[b]++ < kSharedTries && best_shared_square(b) > 0) {
           kind_[b] = Kind::shared;
-          shared_up_[b] = any_perpendicular(curves_[b].tangent(shared_at_[b]));
+          shared_up_[b] = any_perpendicular(shared_normal_[b]);
         } else {
           kind_[b] = Kind::swallowed;
           joints_.unite(first_point(b), last_point(b));
