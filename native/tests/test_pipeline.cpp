@@ -270,8 +270,10 @@ TEST(SharedOverlapping, BravaCrossesItselfOnlyWhereItsInputTubesOverlap) {
                                                   /*none_at_all=*/false);
 }
 
-// Not met yet (level 2 figures of mesh_at): brava-bg0003 has 611 pairs, all where its input tubes
-// overlap (SharedOverlapping above), but a tree must have none. Run with --gtest_also_run_disabled_tests.
+// Not met (level 2 figures of mesh_at): brava-bg0003 has 611 pairs, all where its input tubes overlap
+// (SharedOverlapping above), but a tree must have none. Its tubes overlap at 7 places far apart along the
+// tree (docs/crossing_tubes.py), each closing a cycle the tree lacks: a surface of genus 0 that follows
+// them must cross itself there. Run with --gtest_also_run_disabled_tests.
 TEST(SharedTangled, DISABLED_BravaDoesNotCrossItself) {
   expect_crossings_only_where_input_tubes_overlap("brava-bg0003/BG0003_ColorCoded.CNG.swc",
                                                   /*none_at_all=*/true);
