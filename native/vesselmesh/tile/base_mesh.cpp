@@ -478,7 +478,13 @@ class Tiler {
       const double depth = n.dot(a - h.center);
       const Vec3 foot = h.center + depth * n;
       auto inside = [&](const Vec3& u, const Vec3& v) { return (v - u).cross(foot - u).dot(n) >= 0; };
-      if (depth > 0 && inside(a, c) && inside(c, d) && inside(d, a)) faces.push_back({n, depth});
+      // A mouth facing within 30° of a branch's square would push it along its branch, and be pushed by
+      // it, without end (vesselgraph-demo lost a loop so).
+      const bool along_a_branch = std::any_of(p.ends.begin(), p.ends.end(), [&](int32_t i) {
+        return kind_[ends_[i].branch] != Kind::tunnel && n.dot(ends_[i].square.normal) > std::cos(M_PI / 6);
+      });
+      if (depth > 0 && !along_a_branch && inside(a, c) && inside(c, d) && inside(d, a))
+        faces.push_back({n, depth});
     }
     const double margin = 0.1 * scale() * h.hole();  // in front of a face, as intrusion() asks
     double best = h.reach() - margin;
