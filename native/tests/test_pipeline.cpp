@@ -212,12 +212,6 @@ const SharedCase kSharedCases[] = {
     {"neuron-hemibrain-da1/1734350788.swc", true},
     {"secomb-rat-cortex-50/network.vtk", false},
     {"secomb-rat-mesentery/network.vtk", false},
-};
-
-// The looped network where loops can still be absorbed: a loop whose tunnel's mouths cannot clear its
-// patch within 4 loop radii even turned, or come close to another tunnel's, is given up (52 of 53 loops
-// kept).
-const SharedCase kAbsorbingCases[] = {
     {"vesselgraph-demo/vertices.csv", false},
 };
 
@@ -279,51 +273,22 @@ TEST(SharedTangled, DISABLED_BravaDoesNotCrossItself) {
                                                   /*none_at_all=*/true);
 }
 
-class SharedSurfaceAbsorbing : public testing::TestWithParam<SharedCase> {};
-
-TEST_P(SharedSurfaceAbsorbing, SurfaceIsClosedManifoldWithOneComponentPerInputComponent) {
-  SHARED_DATA_OR_SKIP(path, GetParam().file);
-  const CenterlineGraph g = build_graph(read_centerline(path));
-  for (int levels : {0, 1, 2}) {
-    const TopologyReport t = check_topology(mesh_at(g, levels).mesh);
-    EXPECT_TRUE(t.closed_manifold()) << path << " level " << levels;
-    EXPECT_EQ(t.components, g.components);
-    EXPECT_GT(t.signed_volume, 0.0);
-  }
-}
-
-// Not met yet: vesselgraph-demo has genus 52 of its 53 loops (see kAbsorbingCases).
-TEST_P(SharedSurfaceAbsorbing, DISABLED_GenusIsTheNumberOfLoops) {
-  SHARED_DATA_OR_SKIP(path, GetParam().file);
-  const CenterlineGraph g = build_graph(read_centerline(path));
-  expect_closed_surface(mesh_at(g, 0).mesh, g, path);
-}
-
-INSTANTIATE_TEST_SUITE_P(Shared, SharedSurfaceAbsorbing, testing::ValuesIn(kAbsorbingCases), case_name);
-
-TEST(SharedGenus, VesselgraphDemoLosesOnlyTheLoopThatSharesItsFilledPatchWithAnother) {
-  // 51 of 53 before turned tunnel mouths passed over hull faces facing along a branch.
-  SHARED_DATA_OR_SKIP(path, "vesselgraph-demo/vertices.csv");
-  const CenterlineGraph g = build_graph(read_centerline(path));
-  for (int levels : {0, 2}) EXPECT_EQ(check_topology(mesh_at(g, levels).mesh).genus, g.loops - 1) << levels;
-}
-
 TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEightPercentP95OnTheirTubes) {
   SHARED_DATA_OR_SKIP(path, "human-brain-arteries/arteries_smooth.vtk");
   const FidelityReport f = uniform_level_two_fidelity(path);
   EXPECT_LE(f.abs_relative_error.median, 0.02);  // 0.011 measured
   EXPECT_LE(f.abs_relative_error.p95, 0.08);     // 0.028 measured (0.052 without the fit)
-  EXPECT_LE(f.area_off_tubes, 0.01);             // 0.0016 measured
+  EXPECT_LE(f.area_off_tubes, 0.01);             // 0.0013 measured
 }
 
 TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95OnItsTubes) {
   SHARED_DATA_OR_SKIP(path, "brava-bg0003/BG0003_ColorCoded.CNG.swc");
   const FidelityReport f = uniform_level_two_fidelity(path);
-  // 0.017 and 0.030 measured; without the fit 0.020 and 0.123, too thin on the outer side of the 50° to
+  // 0.018 and 0.030 measured; without the fit 0.020 and 0.121, too thin on the outer side of the 50° to
   // 90° corners of a tracing whose points are 4.4 radii apart.
   EXPECT_LE(f.abs_relative_error.median, 0.02);
   EXPECT_LE(f.abs_relative_error.p95, 0.08);
-  EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0034 measured
+  EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0031 measured
 }
 
 // Not met yet: on neuron-hemibrain-da1, 4.8 % of the surface's area lies over half a radius off the tubes

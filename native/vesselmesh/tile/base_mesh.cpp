@@ -61,7 +61,7 @@ struct End {
 /// face of the hull. The loop's tubes overlap (that is why its joints merged), so the input has no hole
 /// to copy; a small one, well inside the patch, gives the surface the loop's genus.
 struct Tunnel {
-  Vec3 center = Vec3::Zero();   ///< the loop's centroid
+  Vec3 center = Vec3::Zero();   ///< the loop's centroid, plus `offset`
   Vec3 normal = Vec3::UnitZ();  ///< of the loop's best-fit plane
   /// Directions of the head's and the tail's mouth: either side of the loop's plane, tilted away from
   /// the mean centroid of the patch's loops by the loop's offset from it in loop radii, up to 27°, so
@@ -73,6 +73,9 @@ struct Tunnel {
   bool turned = false;
   std::array<Vec3, 2> turned_out;
   int turns = 0;  ///< how often it has been turned
+  /// Added to the loop's centroid once the mouths have met another tunnel's: away from that tunnel's
+  /// centre by twice their corners' reach. A hole anywhere through the patch gives it the loop's handle.
+  Vec3 offset = Vec3::Zero();
   double hole() const { return 0.25 * radius; }
   /// Mouths pushed further than this cannot clear the patch: the loop is absorbed after all. (Along the
   /// loop's normal, a mouth pushed further stands out of the patch as a spike; on faces of the patch's
@@ -391,24 +394,32 @@ class Tiler {
     for (int round = 0;; ++round) {
       collect_patches();
       for (const Patch& p : patches_) place_squares(p, 0);
-      // A tunnel whose mouths cannot clear the patch is turned to run where the patch is thinner; one
-      // that still cannot, or whose mouths come close to another tunnel's (two loops of nearly the same
-      // centre), gives its loop up. The patch is placed again before anything else is decided, as the
-      // mouths may have pushed the other squares.
+      // A tunnel whose mouths cannot clear the patch is turned to run where the patch is thinner. One
+      // whose mouths come close to another tunnel's (two loops of nearly the same centre) first moves
+      // its hole away from the other's by twice their corners' reach, then is turned too. One that
+      // still cannot open gives its loop up. The patch is placed again before anything else is decided,
+      // as the mouths may have pushed the other squares.
       bool changed = false;
       for (const Patch& p : patches_) {
         std::vector<int32_t> kept;
         for (int32_t i : p.ends) {
           const int32_t b = ends_[i].branch;
           if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
-          const bool clash =
-              std::any_of(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
-          if (!clash && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
+          const auto clash =
+              std::find_if(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
+          if (clash == kept.end() && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
             kept.push_back(b);
             continue;
           }
           changed = true;
-          if (!clash && tunnel_[b].turns < kTurns && turn_tunnel(b, p, kept)) continue;
+          if (clash != kept.end() && tunnel_[b].offset.isZero()) {
+            Tunnel &h = tunnel_[b], &other = tunnel_[*clash];
+            Vec3 away = h.center - other.center;
+            away = away.norm() > 0 ? away.normalized() : any_perpendicular(other.normal);
+            h.offset = 2 * scale() * (h.hole() + other.hole()) * away;
+            continue;
+          }
+          if (tunnel_[b].turns < kTurns && turn_tunnel(b, p, kept)) continue;
           kind_[b] = Kind::swallowed;
           --mesh_.tunnels;
         }
@@ -589,7 +600,7 @@ class Tiler {
           spread += l * d * d.transpose();
         }
       Tunnel& h = tunnel_[b];
-      h.center = center;
+      h.center = center + h.offset;
       h.radius = radius / length;
       h.normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spread).eigenvectors().col(0);
       Patch& p = patches_[patch_of_end_[head_[b]]];
