@@ -149,6 +149,23 @@ inline CenterlineData ring_between_branches(double scale) {
   }
   return d;
 }
+/// Two triangular loops sharing an edge (a rhombus of side 2 radii whose short diagonal is that edge), so
+/// close that their tubes fill both, each corner with a branch leading away steeply out of their plane
+/// (8 radii, up and down by turns): both loops need a hole through one patch, and the branches stand
+/// where the holes would open along the loops' axis.
+inline CenterlineData two_loops_in_one_patch(double scale) {
+  const double x = std::sqrt(3.0) * scale;
+  CenterlineData d = start(Vec3(-x, 0, 0), scale);
+  for (const Vec3& p : {Vec3(0, scale, 0), Vec3(0, -scale, 0), Vec3(x, 0, 0)}) {
+    d.points.push_back(p);
+    d.radius.push_back(scale);
+  }
+  d.edges = {{0, 1}, {0, 2}, {1, 2}, {1, 3}, {2, 3}};
+  const Vec3 away[] = {{-1, 0, 3}, {0, 1, -3}, {0, -1, 3}, {1, 0, -3}};
+  for (int32_t corner = 0; corner < 4; ++corner)
+    run(d, corner, d.points[corner] + 8 * scale * away[corner].normalized(), 4, 0.8 * scale);
+  return d;
+}
 /// A quarter circle of bend radius `bend` (in radii) of a vessel of radius 1, densely sampled.
 inline CenterlineData bend(double bend_radii, double scale) {
   CenterlineData d = start(Vec3(0, 0, -10 * scale), 1 * scale);
@@ -264,6 +281,7 @@ inline std::vector<Named> joint_kinds() {
       {"lens", lens, 1},
       {"short_loop", short_loop, 1},
       {"ring_between_branches", ring_between_branches, 1},
+      {"two_loops_in_one_patch", two_loops_in_one_patch, 2},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
       {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
