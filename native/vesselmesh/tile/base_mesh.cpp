@@ -405,15 +405,15 @@ class Tiler {
         for (int32_t i : p.ends) {
           const int32_t b = ends_[i].branch;
           if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
-          const auto clash =
+          const auto met =  // a kept tunnel whose mouths this one's come close to
               std::find_if(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
-          if (clash == kept.end() && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
+          if (met == kept.end() && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {
             kept.push_back(b);
             continue;
           }
           changed = true;
-          if (clash != kept.end() && tunnel_[b].offset.isZero()) {
-            Tunnel &h = tunnel_[b], &other = tunnel_[*clash];
+          if (met != kept.end() && tunnel_[b].offset.isZero()) {
+            Tunnel &h = tunnel_[b], &other = tunnel_[*met];
             Vec3 away = h.center - other.center;
             away = away.norm() > 0 ? away.normalized() : any_perpendicular(other.normal);
             h.offset = 2 * scale() * (h.hole() + other.hole()) * away;
@@ -468,11 +468,12 @@ class Tiler {
   std::vector<int32_t> patch_of_end_;
 
   /// A straight hole through a convex patch gives it a genus whichever way it runs. For a tunnel whose
-  /// mouths could not clear patch `p` on either side of its loop's plane: mouths on two faces of the
-  /// hull of the patch's other squares and rims, facing apart (normals over 134° apart), whose
-  /// planes the loop's centroid is nearest to and lies in front of. A mouth on a face of the hull adds no
-  /// bulge to it, wherever the patch is thick. The hole must keep clear of the holes of the tunnels
-  /// `kept` already. Returns false when no pair of faces will do within the tunnel's reach.
+  /// mouths could not clear patch `p` on either side of its loop's plane, or met another tunnel's:
+  /// mouths on two faces of the hull of the patch's other squares and rims, facing apart (normals over
+  /// 134° apart) and not along a branch, whose planes the tunnel's centre is nearest to and lies in front
+  /// of. A mouth on a face of the hull adds no bulge to it, wherever the patch is thick. The hole must
+  /// keep clear of the holes of the tunnels `kept` already. Returns false when no pair of faces will do
+  /// within the tunnel's reach.
   bool turn_tunnel(int32_t b, const Patch& p, const std::vector<int32_t>& kept) {
     Tunnel& h = tunnel_[b];
     ++h.turns;
