@@ -161,6 +161,51 @@ TEST(Fit, SurfacesOfTubesThatOverlapSideBySideArePartedAtEveryScale) {
   }
 }
 
+TEST(Fit, ABulgePressedOntoAVesselPassingCloseByGoesBackToItsOwnTubeAtEveryScale) {
+  // Two straight vessels of radius r whose tubes pass 0.05 r apart, as a joint's patch bulging out of its
+  // tubes does next to another vessel: a patch of one surface, facing the other, is pushed out onto the
+  // other's tube, up to 0.4 r from its own. It lies on the other vessel's tube but faces into it; the
+  // fit gives it back to its own vessel, and the part within reach of its own tube (a quarter radius)
+  // comes back to it, on its side of the plane between the two.
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const double r = scale, apart = 2.05 * scale;
+    CenterlineData d;
+    d.points = {Vec3(0, 0, 0),    Vec3(10, 0, 0),    Vec3(20, 0, 0),
+                Vec3(0, 2.05, 0), Vec3(10, 2.05, 0), Vec3(20, 2.05, 0)};
+    for (Vec3& p : d.points) p *= scale;
+    d.radius.assign(6, r);
+    d.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+    const CenterlineGraph g = build_graph(d);
+    TriMesh mesh = limit_surface(g);
+    std::vector<int32_t> near_own;  // pushed out by at most a quarter radius
+    int beyond = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      Vec3& p = mesh.vertices[v];
+      const double angle = std::atan2(p.z(), p.y());  // from the line towards the other vessel
+      if (p.y() > apart / 2 || p.x() < 6 * scale || p.x() > 14 * scale || angle < 0 || angle > 0.5) continue;
+      // Out along its own radius to where it meets the other tube: ρ² − 2ρ·apart·cos θ + apart² − r² = 0.
+      const double c = std::cos(angle), disc = apart * apart * c * c - (apart * apart - r * r);
+      if (disc < 0) continue;
+      const double rho = apart * c - std::sqrt(disc);
+      if (rho - r > 0.4 * r) continue;
+      p = Vec3(p.x(), rho * c, rho * std::sin(angle));
+      if (rho - r <= 0.25 * r)
+        near_own.push_back(static_cast<int32_t>(v));
+      else
+        ++beyond;
+    }
+    ASSERT_GT(near_own.size(), 10u) << scale;
+    ASSERT_GT(beyond, 2) << scale;
+    const int64_t crossing_before = find_self_intersections(mesh).pairs;
+    fit_to_tubes(mesh, g, Fit::onto);
+    for (int32_t v : near_own) {
+      const Vec3& p = mesh.vertices[v];
+      EXPECT_LT(std::hypot(p.y(), p.z()) - r, 0.05 * r) << "scale " << scale << " vertex " << v;
+    }
+    EXPECT_LE(find_self_intersections(mesh).pairs, crossing_before) << scale;
+  }
+}
+
 TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) {
   // Two sheets above a tube of radius 0.5 along x, at heights 1 and 0.75: pulled straight down onto the
   // tube, the upper one would pass through the lower one.

@@ -39,10 +39,12 @@ Vec3 face_normal(const std::vector<Vec3>& v, const Tri& t) {
   return (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]);
 }
 
-/// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, and
-/// the cone nearest to it (outside; inside, the first found that holds it).
+/// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, the
+/// cone nearest to it (outside; inside, the first found that holds it) and how far outside the union it
+/// lies (0 inside).
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
-                   std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone) {
+                   std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone,
+                   std::vector<double>& outside) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
@@ -50,6 +52,7 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
       ConeDistance d = cones.nearest(p, &hint, false);  // inside: only the sign
       nearest_cone[v] = hint;
       radius[v] = d.radius;
+      outside[v] = std::max(d.distance, 0.0);
       if (d.distance < 0) {
         if (fit != Fit::onto) continue;
         // Inside, the cone that holds the vertex deepest is the one it goes out of.
@@ -187,16 +190,24 @@ Vec3 parted(const Vec3& p, const Vec3& ca, double ra, const Vec3& cb, double rb,
   return inner + (-margin - f(inner)) / (f(p) - f(inner)) * (p - inner);
 }
 
-/// Each vertex's vessel: the branch of the tubes round it when only one branch's tubes are within a
-/// quarter radius (`clear`); elsewhere, where tubes meet or overlap, that of the nearest such vertex
-/// along the surface (breadth first), so that a vertex near where two surfaces cross is given to the side
-/// it is on. -1 for a component with no clear vertex. `nearest_cone` and `radius` are closest_moves'.
+/// Each vertex's vessel: the branch of the tubes round it when no other branch's tubes lie within a
+/// quarter radius of as near and the surface faces out of them there (`clear`); elsewhere, where tubes
+/// meet or overlap, that of the nearest clear vertex along the surface (breadth first), so that a vertex
+/// near where two surfaces cross is given to the side it is on. A joint's patch that bulges out of its own
+/// tubes onto those of a vessel passing close by lies on that vessel's tube but faces into it: it is not
+/// that vessel's. -1 for a component with no clear vertex. `nearest_cone`, `radius` and `outside` are
+/// closest_moves'.
 std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones,
                             const std::vector<int32_t>& nearest_cone, const std::vector<double>& radius,
-                            std::vector<char>& clear) {
+                            const std::vector<double>& outside, std::vector<char>& clear) {
   const std::size_t n = mesh.vertices.size();
   std::vector<int32_t> owner(n, -1);
   clear.assign(n, 0);
+  std::vector<Vec3> normal(n, Vec3::Zero());  // area-weighted, outward
+  for (const Tri& t : mesh.faces) {
+    const Vec3 area = face_normal(mesh.vertices, t);
+    for (int32_t v : t) normal[v] += area;
+  }
   parallel_for(n, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const int32_t e = nearest_cone[v];
@@ -204,8 +215,11 @@ std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones,
       const int32_t branch = cones.cone(e).branch;
       // Only near a crowded cone can another branch's tube be near.
       if (cones.crowded(e)) {
-        const std::vector<ConeDistance> near = cones.within(mesh.vertices[v], kClear * radius[v]);
-        if (std::any_of(near.begin(), near.end(), [&](const ConeDistance& c) { return c.branch != branch; }))
+        const std::vector<ConeDistance> near =
+            cones.within(mesh.vertices[v], kClear * radius[v] + outside[v]);
+        if (std::any_of(near.begin(), near.end(), [&](const ConeDistance& c) {
+              return c.branch != branch || normal[v].dot(c.direction) <= 0;
+            }))
           continue;
       }
       owner[v] = branch, clear[v] = 1;
@@ -251,11 +265,12 @@ std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones,
 /// Near a joint the two vessels share, their tubes meet by design and nothing is parted. Returns the
 /// number of vertices given such a move.
 int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::vector<int32_t>& nearest_cone,
-                      const std::vector<double>& radius, std::vector<Vec3>& move) {
+                      const std::vector<double>& radius, const std::vector<double>& outside,
+                      std::vector<Vec3>& move) {
   if (!cones.any_crowded()) return 0;
   const std::vector<Vec3>& vertices = mesh.vertices;
   std::vector<char> clear;  // only its own vessel's tubes near: nothing to part from
-  const std::vector<int32_t> owner = owners(mesh, cones, nearest_cone, radius, clear);
+  const std::vector<int32_t> owner = owners(mesh, cones, nearest_cone, radius, outside, clear);
   std::vector<char> parting(vertices.size(), 0);
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
@@ -291,8 +306,9 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
   std::vector<double> radius(n, 0.0);
   const RoundCones cones(graph);
   std::vector<int32_t> nearest_cone(n, -1);
-  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone);
-  stats.parted = parting_moves(mesh, cones, nearest_cone, radius, move);
+  std::vector<double> outside(n, 0.0);
+  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside);
+  stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
 
   // Only triangles with a moved corner can fold; only those with a long move can cross others.
   std::vector<double> reach(n);  // how far a vertex moves before its move is long
