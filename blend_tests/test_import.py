@@ -93,3 +93,19 @@ def test_check_surface_stores_the_checkers_report_on_the_surface(project_data):
     assert report["intersections"]["pairs"] == 0
     assert report["fidelity"]["abs_relative_error"]["p95"] < 0.08
     assert report["fidelity"]["area_off_tubes"] < 0.01
+    assert report["input_overlaps"] == []
+
+
+def test_check_surface_says_where_the_centerlines_tubes_overlap(tmp_path):
+    """A vessel that turns back across its own start, three times thinner there (no parting presses it out of
+    the thick tube): the surface's crossings are where the tubes overlap, and the report says where."""
+    path = tmp_path / "crosses_itself.swc"
+    path.write_text("1 1 0 0 0 1 -1\n2 1 10 0 0 1 1\n3 1 20 0 0 1 2\n4 1 0 10 0 1 1\n5 1 10 10 0.3 0.3 4\n"
+                    "6 1 10 -10 0.3 0.3 5\n")
+    _, surface = import_file(path)
+    assert bpy.ops.vesselmesh.check() == {"FINISHED"}
+    report = json.loads(surface.vesselmesh.stats)["check"]
+    assert report["intersections"]["pairs"] > 0
+    assert report["intersections"]["pairs_in_overlapping_tubes"] == report["intersections"]["pairs"]
+    [overlap] = report["input_overlaps"]
+    assert np.allclose(overlap["at"], [10, 0, 0.15], atol=0.1)

@@ -5,11 +5,12 @@
 //                   [--caps flat|open] [--fit onto|inward|none] [--stats-json FILE] [--curvature]
 //   vesselmesh check MESH [--centerline IN] [--json]
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -17,6 +18,7 @@
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/summary.hpp"
 #include "vesselmesh/synth/synth.hpp"
 #include "vesselmesh/write/centerline_vtk.hpp"
 
@@ -42,6 +44,23 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
             << n["merged_points"] << " coincident points, dropped " << n["zero_length_edges"]
             << " zero-length and " << n["duplicate_edges"] << " duplicate edges and " << n["isolated_points"]
             << " isolated points\n";
+  // Where the input's tubes overlap, the surface cannot follow both without crossing itself or pressing
+  // them flat against each other: worth knowing before meshing.
+  const auto& overlaps = j["overlaps"];
+  std::cout << "  overlaps    " << overlaps.size() << (overlaps.size() == 1 ? " place" : " places")
+            << " where tubes overlap away from their joints (vessels crossing, touching or traced along "
+               "each other)\n";
+  constexpr std::size_t kShown = 10;
+  std::ostringstream places;
+  places << std::setprecision(4);
+  for (std::size_t i = 0; i < std::min(overlaps.size(), kShown); ++i) {
+    const auto& o = overlaps[i];
+    places << "              at (" << o["at"][0].get<double>() << ", " << o["at"][1].get<double>() << ", "
+           << o["at"][2].get<double>() << "), radius " << o["radius"].get<double>() << ", " << o["edge_pairs"]
+           << (o["edge_pairs"] == 1 ? " edge pair" : " edge pairs") << "\n";
+  }
+  std::cout << places.str();
+  if (overlaps.size() > kShown) std::cout << "              ... (all of them: --json)\n";
 }
 
 void print_check(const CheckReport& r, const std::string& file) {

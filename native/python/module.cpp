@@ -19,6 +19,7 @@
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/summary.hpp"
 #include "vesselmesh/synth/synth.hpp"
 
 namespace py = pybind11;

@@ -4,15 +4,15 @@
 // geometric case is run at the scales 1e-3, 1 and 1e3.
 #include <gtest/gtest.h>
 
-#include "surfaces.hpp"
-
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "surfaces.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
+#include "vesselmesh/geometry/round_cones.hpp"
 
 using namespace vesselmesh;
 using surfaces::scaled;
@@ -515,6 +515,47 @@ TEST(SelfIntersections, ABranchComingBackOntoItselfOverlapsTheInputButNotWhereIt
     const IntersectionReport t = find_self_intersections(corner, &h);
     EXPECT_GT(t.pairs, 0) << s;
     EXPECT_EQ(t.pairs_in_overlapping_tubes, 0) << s;
+  }
+}
+
+TEST(TubeOverlaps, AreWhereTheInputTubesOverlapAwayFromTheirJointsAtEveryScale) {
+  for (double s : kScales) {
+    // Two tubes of radius 1 crossing, axes 0.5 apart: one place, at the crossing.
+    const std::vector<TubeOverlap> crossing = tube_overlaps(straight_runs(
+        {{Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s}, {Vec3(0, -10, 0.5) * s, Vec3(0, 10, 0.5) * s}}, s));
+    ASSERT_EQ(crossing.size(), 1u) << s;
+    EXPECT_LT((crossing[0].at - Vec3(0, 0, 0.25) * s).norm(), 0.1 * s) << s;
+    EXPECT_DOUBLE_EQ(crossing[0].radius, s);
+    // The same axes with thin tubes: none.
+    EXPECT_TRUE(tube_overlaps(straight_runs({{Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s},
+                                             {Vec3(0, -10, 0.5) * s, Vec3(0, 10, 0.5) * s}},
+                                            0.1 * s))
+                    .empty())
+        << s;
+    // Two vessels side by side 1.2 radii apart along their whole length: one place.
+    const std::vector<TubeOverlap> side = tube_overlaps(straight_runs(
+        {{Vec3(0, 0, 0) * s, Vec3(20, 0, 0) * s}, {Vec3(0, 1.2, 0) * s, Vec3(20, 1.2, 0) * s}}, s));
+    ASSERT_EQ(side.size(), 1u) << s;
+    EXPECT_GE(side[0].edge_pairs, 10) << s;
+    // A T: branches meeting at their joint are no overlap of the input.
+    CenterlineData t;
+    t.points = {Vec3(0, 0, 0) * s, Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, Vec3(0, 10, 0) * s};
+    t.radius.assign(t.points.size(), s);
+    t.edges = {{1, 0}, {0, 2}, {0, 3}};
+    EXPECT_TRUE(tube_overlaps(build_graph(t)).empty()) << s;
+    // One branch along x, round a square and back down through its own start: one place; a branch that
+    // merely turns a right angle: none.
+    CenterlineData loop;
+    loop.points = {Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s, Vec3(10, 10, 0) * s, Vec3(0, 10, 0.5) * s,
+                   Vec3(0, -10, 0.5) * s};
+    loop.radius.assign(loop.points.size(), s);
+    loop.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 4}};
+    EXPECT_EQ(tube_overlaps(build_graph(loop)).size(), 1u) << s;
+    CenterlineData corner;
+    corner.points = {Vec3(-10, 0, 0) * s, Vec3(0, 0, 0) * s, Vec3(0, 10, 0) * s};
+    corner.radius.assign(corner.points.size(), s);
+    corner.edges = {{0, 1}, {1, 2}};
+    EXPECT_TRUE(tube_overlaps(build_graph(corner)).empty()) << s;
   }
 }
 

@@ -120,6 +120,21 @@ TEST(Cli, InfoTextNamesTheFile) {
   EXPECT_NE(run.output.find("loops       1"), std::string::npos) << run.output;
 }
 
+TEST(Cli, InfoTellsWhereTheInputTubesOverlap) {
+  // A vessel that turns back across its own start, 0.3 off its axis.
+  const std::string path = vesselmesh::test::temp_path("crosses_itself.swc");
+  std::ofstream(path) << "1 1 0 0 0 1 -1\n2 1 10 0 0 1 1\n3 1 20 0 0 1 2\n4 1 0 10 0 1 1\n5 1 10 10 0.3 1 4\n"
+                         "6 1 10 -10 0.3 1 5\n";
+  const CliRun run = run_cli("info '" + path + "'");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_NE(run.output.find("overlaps    1 place where"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("at (10, 0, 0.15), radius 1, 2 edge pairs"), std::string::npos) << run.output;
+  const nlohmann::json j = info_json(path);
+  ASSERT_EQ(j["overlaps"].size(), 1u);
+  EXPECT_EQ(j["overlaps"][0]["edge_pairs"], 2);
+  EXPECT_TRUE(info_json(vesselmesh::test::test_data("ring_with_tail.vtk"))["overlaps"].empty());
+}
+
 TEST(Cli, MalformedInputExitsNonZeroWithTheFileAndLine) {
   const std::string path = vesselmesh::test::temp_path("truncated.swc");
   std::ofstream(path) << "1 1 0 0 0 1 -1\n2 1 0 0 1\n";

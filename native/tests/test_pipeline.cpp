@@ -251,9 +251,9 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedUntangled, testing::ValuesIn(kSharedCases
 // Not met (level 2 figures of mesh_at): brava-bg0003 has 611 pairs, all where its input tubes overlap
 // (SharedUntangled above: a terminal branch traced back along another 0.1 to 0.4 radii off it, a
 // branch looping back through its sibling's tube, vessels crossing), but a tree must have none. Its
-// tubes overlap at 7 places far apart along the tree (docs/crossing_tubes.py), each closing a cycle the
-// tree lacks: a surface of genus 0 that follows them must cross itself there. Run with
-// --gtest_also_run_disabled_tests.
+// tubes overlap at 27 places (`vesselmesh info`), each closing a cycle the tree lacks: a surface of
+// genus 0 must cross itself there unless it presses the two tubes flat against each other, which the
+// fit cannot do at 3 of them. Run with --gtest_also_run_disabled_tests.
 TEST(SharedTangled, DISABLED_BravaDoesNotCrossItself) {
   expect_crossings_only_where_input_tubes_overlap("brava-bg0003/BG0003_ColorCoded.CNG.swc",
                                                   /*none_at_all=*/true);

@@ -8,6 +8,7 @@
 
 #include "vesselmesh/frames/frames.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
+#include "vesselmesh/graph/union_find.hpp"
 
 namespace vesselmesh {
 
@@ -304,6 +305,49 @@ bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
       if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t) + margin) return true;
     }
   return false;
+}
+
+std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges() const {
+  std::vector<std::array<int32_t, 2>> out;
+  tight_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
+    if (cones_[e].branch != cones_[f].branch ? overlap(e, f) : folds_onto(e, f))
+      out.push_back({std::min(e, f), std::max(e, f)});
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) {
+  const RoundCones cones(g);
+  const std::vector<std::array<int32_t, 2>> pairs = cones.overlapping_edges();
+  // Edges of overlapping pairs, joined across each pair and to their neighbours along the graph that
+  // overlap too: two vessels side by side along many edges make one place.
+  std::vector<char> overlapping(g.edges.size(), 0);
+  UnionFind places(g.edges.size());
+  for (const auto& [e, f] : pairs) overlapping[e] = overlapping[f] = 1, places.unite(e, f);
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    if (overlapping[e])
+      for (int32_t v : g.edges[e])
+        for (int32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+          if (overlapping[g.incident[k]]) places.unite(static_cast<int32_t>(e), g.incident[k]);
+  std::vector<TubeOverlap> out;
+  std::vector<int32_t> slot(g.edges.size(), -1);  // per place representative: its index in out
+  for (const auto& [e, f] : pairs) {
+    int32_t& i = slot[places.find(e)];
+    if (i < 0) {
+      i = static_cast<int32_t>(out.size());
+      out.push_back({Vec3::Zero(), 0.0, 0});
+    }
+    const RoundCone& k = cones.cone(e);
+    const RoundCone& l = cones.cone(f);
+    const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
+    TubeOverlap& o = out[i];
+    o.at += 0.5 * (k.point_at(s) + l.point_at(t));  // a sum until the end
+    o.edge_pairs += 1;
+    o.radius = std::max({o.radius, k.radius_at(s), l.radius_at(t)});
+  }
+  for (TubeOverlap& o : out) o.at /= static_cast<double>(o.edge_pairs);
+  return out;
 }
 
 }  // namespace vesselmesh

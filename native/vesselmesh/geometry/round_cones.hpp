@@ -38,6 +38,21 @@ struct TerminalCap {
   double radius;
 };
 
+/// A place where the input's tubes overlap (two vessels crossing, touching, or traced along each other;
+/// a branch looping back onto itself): the union of the tubes has a handle there that the graph lacks, so
+/// a surface of the graph's genus cannot follow both tubes there. The fit presses the two surfaces flat
+/// against each other where it can; where it cannot (one tube mostly inside the other), they cross.
+struct TubeOverlap {
+  Vec3 at;             ///< mean of the overlapping edges' closest axis points
+  double radius;       ///< the largest radius there
+  int64_t edge_pairs;  ///< overlapping edge pairs it gathers
+};
+
+/// The places where `g`'s tubes overlap (RoundCones::overlapping_edges), overlapping edge pairs joined
+/// into one place where they share an edge or their edges are neighbours along the graph; ordered by
+/// position in the file (their first edge).
+std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g);
+
 /// Signed distance from `p` to the surface of round cone `k`.
 ConeDistance cone_distance(const RoundCone& k, const Vec3& p);
 
@@ -83,6 +98,10 @@ class RoundCones {
   /// True near a terminal's end, where the surface is capped rather than round: within 2 radii of the
   /// terminal point and less than a radius behind its section (or beyond it).
   bool near_cap(const Vec3& p) const;
+
+  /// The pairs of edges (e < f) whose tubes overlap as in_overlapping_tubes() counts it: of two branches
+  /// away from the joints they share, or of one branch that comes back onto itself.
+  std::vector<std::array<int32_t, 2>> overlapping_edges() const;
 
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;

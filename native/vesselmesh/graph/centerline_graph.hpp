@@ -63,8 +63,4 @@ constexpr double kCoincidentFraction = 1e-6;
 /// input apart from one sort of the points.
 CenterlineGraph build_graph(const CenterlineData& data);
 
-/// The figures `vesselmesh info` prints, as JSON text: points, edges, components, branches, joints,
-/// terminals, max_degree, loops, radius {min, max}, bbox {min, max}, normalisation {...}.
-std::string summary_json(const CenterlineGraph& graph, int indent = 2);
-
 }  // namespace vesselmesh
