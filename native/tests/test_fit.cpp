@@ -25,6 +25,16 @@ TriMesh limit_surface(const CenterlineGraph& g) {
   return mesh_centerline(g, o).mesh;
 }
 
+/// Two straight vessels of radius `scale`, 20 long along x, the second moved by `offset` (in radii).
+CenterlineGraph side_by_side(const Vec3& offset, double scale) {
+  CenterlineData d;
+  for (const Vec3& start : {Vec3(0, 0, 0), offset})
+    for (double x : {0, 10, 20}) d.points.push_back(scale * (start + Vec3(x, 0, 0)));
+  d.radius.assign(6, scale);
+  d.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+  return build_graph(d);
+}
+
 double largest_error(const TriMesh& mesh, const CenterlineGraph& g) {
   return radius_fidelity(mesh, g).relative_error.max;
 }
@@ -140,13 +150,7 @@ TEST(Fit, SurfacesOfTubesThatOverlapSideBySideArePartedAtEveryScale) {
   // Two straight vessels 1.2 radii apart, side by side: each surface runs through the other's tube. The
   // fit, onto or inward, presses them flat against each other, and leaves the outside of the union.
   for (double scale : {1e-3, 1.0, 1e3}) {
-    CenterlineData d;
-    d.points = {Vec3(0, 0, 0),     Vec3(10, 0, 0),     Vec3(20, 0, 0),
-                Vec3(0, 1.2, 0.3), Vec3(10, 1.2, 0.3), Vec3(20, 1.2, 0.3)};
-    for (Vec3& p : d.points) p *= scale;
-    d.radius.assign(6, scale);
-    d.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
-    const CenterlineGraph g = build_graph(d);
+    const CenterlineGraph g = side_by_side(Vec3(0, 1.2, 0.3), scale);
     const TriMesh before = limit_surface(g);
     ASSERT_GT(find_self_intersections(before).pairs, 0) << scale;
     for (Fit fit : {Fit::onto, Fit::inward}) {
@@ -169,13 +173,7 @@ TEST(Fit, ABulgePressedOntoAVesselPassingCloseByGoesBackToItsOwnTubeAtEveryScale
   // comes back to it, on its side of the plane between the two.
   for (double scale : {1e-3, 1.0, 1e3}) {
     const double r = scale, apart = 2.05 * scale;
-    CenterlineData d;
-    d.points = {Vec3(0, 0, 0),    Vec3(10, 0, 0),    Vec3(20, 0, 0),
-                Vec3(0, 2.05, 0), Vec3(10, 2.05, 0), Vec3(20, 2.05, 0)};
-    for (Vec3& p : d.points) p *= scale;
-    d.radius.assign(6, r);
-    d.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
-    const CenterlineGraph g = build_graph(d);
+    const CenterlineGraph g = side_by_side(Vec3(0, 2.05, 0), scale);
     TriMesh mesh = limit_surface(g);
     std::vector<int32_t> near_own;  // pushed out by at most a quarter radius
     int beyond = 0;
