@@ -52,7 +52,11 @@ TEST(Adaptive, UniformMethodIsLoopSubdivisionOnTheLimitSurface) {
     const SubdividedMesh s = subdivide(base, with(Refinement::uniform, levels));
     const TriMesh expected = loop_limit(loop_subdivide(base, levels));
     EXPECT_EQ(s.mesh.faces, expected.faces) << "level " << levels;
-    EXPECT_EQ(s.mesh.vertices, expected.vertices) << "level " << levels;
+    // The same masks, summed in another order (the last level goes to the limit in one pass).
+    ASSERT_EQ(s.mesh.vertices.size(), expected.vertices.size());
+    for (std::size_t v = 0; v < expected.vertices.size(); ++v)
+      EXPECT_LT((s.mesh.vertices[v] - expected.vertices[v]).norm(), 1e-14)
+          << "level " << levels << " vertex " << v;
     EXPECT_EQ(std::count(s.transition.begin(), s.transition.end(), 1), 0);
   }
 }

@@ -194,13 +194,13 @@ TEST(Fit, ABulgePressedOntoAVesselPassingCloseByGoesBackToItsOwnTubeAtEveryScale
     }
     ASSERT_GT(near_own.size(), 10u) << scale;
     ASSERT_GT(beyond, 2) << scale;
-    const int64_t crossing_before = find_self_intersections(mesh).pairs;
     fit_to_tubes(mesh, g, Fit::onto);
+    // The plane between the tubes lies halfway across the 0.05 r between them; the parted surface keeps 2 %
+    // of the radius from it. Given to the other vessel, the patch would stay on its tube, 0.05 r out.
     for (int32_t v : near_own) {
       const Vec3& p = mesh.vertices[v];
-      EXPECT_LT(std::hypot(p.y(), p.z()) - r, 0.05 * r) << "scale " << scale << " vertex " << v;
+      EXPECT_LT(std::hypot(p.y(), p.z()) - r, 0.02 * r) << "scale " << scale << " vertex " << v;
     }
-    EXPECT_LE(find_self_intersections(mesh).pairs, crossing_before) << scale;
   }
 }
 

@@ -311,6 +311,29 @@ TEST(Loop, VerticesApproachTheirLimitPositionsAsLevelsIncrease) {
   EXPECT_LT(previous, 1e-3);
 }
 
+TEST(Loop, OnePassToTheLimitIsTheLimitOfTheNextLevel) {
+  // Closed meshes with valences 3 to 6, an open grid (boundary rules), a bow tie (a fixed vertex), each with
+  // a vertex property, at three scales.
+  TriMesh bow_tie;
+  bow_tie.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  bow_tie.faces = {{0, 1, 2}, {0, 3, 4}};
+  const TriMesh grid = tilted_grid(5, 4, Vec3(0.3, -0.2, 1), Vec3(1, 0, 0), Vec3(0, 0.6, 0.8));
+  for (double scale : {1e-3, 1.0, 1e3})
+    for (TriMesh mesh : {octahedron(), irregular_cube(), torus(6, 4, 4, 1), grid, bow_tie}) {
+      std::vector<float> height;
+      for (Vec3& p : mesh.vertices) p *= scale, height.push_back(static_cast<float>(p.z() / scale));
+      mesh.vertex_properties.push_back({"height", height});
+      const TriMesh expected = loop_limit(loop_subdivide(mesh));
+      const TriMesh one_pass = loop_subdivide_to_limit(mesh);
+      EXPECT_EQ(one_pass.faces, expected.faces);
+      ASSERT_EQ(one_pass.vertices.size(), expected.vertices.size());
+      for (std::size_t v = 0; v < expected.vertices.size(); ++v) {
+        EXPECT_LT((one_pass.vertices[v] - expected.vertices[v]).norm(), 1e-14 * scale) << "vertex " << v;
+        EXPECT_NEAR(one_pass.vertex_properties[0].values[v], expected.vertex_properties[0].values[v], 1e-6);
+      }
+    }
+}
+
 TEST(Loop, SquareTubeShrinksToTheKnownMeanRadius) {
   // A closed ring of square sections (circumradius 1, sections 1.5 apart, every quad cut along the same
   // diagonal as the pipeline does) with so large a major radius that its curvature is negligible: a long tube

@@ -23,10 +23,10 @@ Hierarchy uniform_hierarchy(const TriMesh& base, int levels) {
   TriMesh m{base.vertices, base.faces, {}};
   h.faces.push_back(m.faces);
   for (int k = 0; k < levels; ++k) {
-    m = loop_subdivide(m);
+    m = k + 1 < levels ? loop_subdivide(m) : loop_subdivide_to_limit(m);
     h.faces.push_back(m.faces);
   }
-  h.limit = loop_limit(m).vertices;
+  h.limit = levels > 0 ? std::move(m.vertices) : loop_limit(m).vertices;
   return h;
 }
 

@@ -191,15 +191,27 @@ std::vector<T> subdivide_values(const Connectivity& c, const std::vector<VertexM
   return out;
 }
 
-}  // namespace
-
-TriMesh loop_subdivide(const TriMesh& mesh) {
-  const Connectivity c = connect(mesh);
-  const std::vector<VertexMask> masks = vertex_masks(c, {3.0 / 4, 1.0 / 8}, [](int n) {
+/// The masks of the Loop subdivision step.
+std::vector<VertexMask> subdivision_masks(const Connectivity& c) {
+  return vertex_masks(c, {3.0 / 4, 1.0 / 8}, [](int n) {
     const double beta = loop_beta(n);
     return VertexMask{1 - n * beta, beta};
   });
+}
 
+/// χ_n: the weight of each of an interior vertex's n neighbours in its limit position.
+double limit_weight(int n) { return 1 / (3 / (8 * loop_beta(n)) + n); }
+
+/// The masks that take a vertex to its limit position.
+std::vector<VertexMask> limit_masks(const Connectivity& c) {
+  return vertex_masks(c, {2.0 / 3, 1.0 / 6}, [](int n) {
+    return VertexMask{1 - n * limit_weight(n), limit_weight(n)};
+  });
+}
+
+/// One level: positions and properties, and the faces numbered as loop.hpp documents.
+TriMesh subdivided(const TriMesh& mesh, const Connectivity& c) {
+  const std::vector<VertexMask> masks = subdivision_masks(c);
   TriMesh out;
   out.vertices = subdivide_values(c, masks, mesh.vertices);
   out.vertex_properties.reserve(mesh.vertex_properties.size());
@@ -220,6 +232,54 @@ TriMesh loop_subdivide(const TriMesh& mesh) {
   return out;
 }
 
+/// Zero of a value type: a number or an Eigen vector.
+template <typename T>
+T zero() {
+  if constexpr (std::is_arithmetic_v<T>)
+    return T(0);
+  else
+    return T::Zero();
+}
+
+/// The limit positions of the next level's values `next`, from this level's values `in` and connectivity:
+/// an old vertex's limit does not depend on the level, so it comes from its ring here; an edge vertex's from
+/// its ring in the next level, made of the edge's two moved ends (its two neighbours along the boundary, for
+/// a boundary edge) and, inside, the two other edge vertices of each of the edge's two faces (valence 6).
+template <typename T>
+std::vector<T> limit_of_next(const Connectivity& c, const std::vector<T>& in, const std::vector<T>& next) {
+  using Acc = std::conditional_t<std::is_floating_point_v<T>, double, T>;
+  const size_t nv = in.size();
+  std::vector<T> out(next.size());
+  apply_vertex_masks(c, limit_masks(c), in.data(), out.data());
+  std::vector<Acc> around(c.edges.size(), zero<Acc>());
+  for (size_t f = 0; f < c.face_edges.size() / 3; ++f)
+    for (int k = 0; k < 3; ++k)
+      around[c.face_edges[3 * f + k]] += Acc(next[nv + c.face_edges[3 * f + (k + 1) % 3]]) +
+                                         Acc(next[nv + c.face_edges[3 * f + (k + 2) % 3]]);
+  const double chi = limit_weight(6);
+  for (size_t e = 0; e < c.edges.size(); ++e) {
+    const auto& [a, b, o0, o1] = c.edges[e];
+    const Acc ends = Acc(next[a]) + Acc(next[b]), self = Acc(next[nv + e]);
+    out[nv + e] =
+        o1 < 0 ? T(2.0 / 3 * self + 1.0 / 6 * ends) : T((1 - 6 * chi) * self + chi * (ends + around[e]));
+  }
+  return out;
+}
+
+}  // namespace
+
+TriMesh loop_subdivide(const TriMesh& mesh) { return subdivided(mesh, connect(mesh)); }
+
+TriMesh loop_subdivide_to_limit(const TriMesh& mesh) {
+  const Connectivity c = connect(mesh);
+  TriMesh out = subdivided(mesh, c);
+  out.vertices = limit_of_next(c, mesh.vertices, out.vertices);
+  for (std::size_t k = 0; k < mesh.vertex_properties.size(); ++k)
+    out.vertex_properties[k].values =
+        limit_of_next(c, mesh.vertex_properties[k].values, out.vertex_properties[k].values);
+  return out;
+}
+
 TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   if (levels < 0)
     throw std::invalid_argument("Loop subdivision: levels must be ≥ 0, got " + std::to_string(levels));
@@ -231,10 +291,7 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
 
 TriMesh loop_limit(const TriMesh& mesh) {
   const Connectivity c = connect(mesh);
-  const std::vector<VertexMask> masks = vertex_masks(c, {2.0 / 3, 1.0 / 6}, [](int n) {
-    const double chi = 1 / (3 / (8 * loop_beta(n)) + n);
-    return VertexMask{1 - n * chi, chi};
-  });
+  const std::vector<VertexMask> masks = limit_masks(c);
   TriMesh limit = mesh;
   apply_vertex_masks(c, masks, mesh.vertices.data(), limit.vertices.data());
   for (std::size_t k = 0; k < mesh.vertex_properties.size(); ++k)

@@ -30,6 +30,10 @@ namespace vesselmesh {
 /// indices.
 TriMesh loop_subdivide(const TriMesh& mesh);
 
+/// One uniform Loop level with every vertex at its Loop limit position: loop_limit(loop_subdivide(mesh)) up
+/// to rounding, in one pass over this level's connectivity instead of a second over the next level's.
+TriMesh loop_subdivide_to_limit(const TriMesh& mesh);
+
 /// `levels` (≥ 0) uniform Loop levels.
 TriMesh loop_subdivide(const TriMesh& mesh, int levels);
 
