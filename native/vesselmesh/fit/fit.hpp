@@ -40,8 +40,9 @@ struct FitStats {
 /// enters another cone. A vertex of one vessel in (or within 2 % of) another's tube, away from a joint
 /// the two share, moves instead onto its own side of the radical plane of the two tubes' spheres there,
 /// 2 % of the smaller radius from it. A move that would fold a triangle over, or carry a triangle through
-/// another part of the surface, is halved, and dropped after the sixth cut: the fit adds no folds and no
-/// crossings.
+/// another part of the surface, is halved, and dropped after the sixth cut: the fit adds no folds, and no
+/// crossings by the moves long enough to make one on their own (over a fifth of the local radius or half
+/// the vertex's shortest edge); shorter moves together can add a few where surfaces already cross.
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
 
 }  // namespace vesselmesh
