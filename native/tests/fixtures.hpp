@@ -259,6 +259,19 @@ inline CenterlineData side_branches_in_a_row(double scale) {
   return d;
 }
 
+/// A neuron's soma as SWC files give it, one point of radius 10 at the origin, with seven dendrites
+/// leaving from its centre: each a first edge 4 long to radius 1.5 (its first point well inside the
+/// soma), then 36 more in 9 edges to radius 1.1. Only the soma's sphere shows round the centre.
+inline CenterlineData soma(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 10 * scale);
+  for (const Vec3& u :
+       {dir(0), dir(180), dir(90, 0), dir(90, 90), dir(90, 180), dir(90, 270), dir(54.7, 45)}) {
+    const int32_t first = run(d, 0, 4 * scale * u, 1, 1.5 * scale);
+    run(d, first, 40 * scale * u, 9, 1.1 * scale);
+  }
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
@@ -284,12 +297,17 @@ inline std::vector<Named> joint_kinds() {
       {"two_loops_in_one_patch", two_loops_in_one_patch, 2},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
+      {"fig9_small_angle_large_radius",
+       [](double s) {
+         return star({{8, 0, 1}, {8, 180, 1}}, s);
+       },
+       0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
       {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
       {"side_branches_in_a_row", side_branches_in_a_row, 0},
+      {"soma", soma, 0},
   };
 }
 

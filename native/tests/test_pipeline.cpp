@@ -102,6 +102,17 @@ TEST(Pipeline, SideBranchesTwoRadiiApartKeepAPatchEachAndTheSurfaceOnTheTubes) {
   }
 }
 
+TEST(Pipeline, SomaWithDendritesFromItsCentreHasItsSphereAtEveryScale) {
+  // Inside the soma's sphere every dendrite's first cone holds the surface too: it must still come out
+  // onto the sphere (before, it stayed inside, the soma half as thick: the 95th percentile 28 %).
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::soma(scale));
+    const FidelityReport f = radius_fidelity(mesh_at(g, 2, Caps::flat, Refinement::uniform).mesh, g);
+    EXPECT_LE(f.abs_relative_error.p95, 0.031) << "scale " << scale;
+    EXPECT_GE(f.relative_error.min, -0.05) << "scale " << scale;
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {

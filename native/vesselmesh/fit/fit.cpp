@@ -57,7 +57,8 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
         if (fit != Fit::onto) continue;
         // Inside, the cone that holds the vertex deepest is the one it goes out of.
         d = cones.deepest(p, kLeast * d.radius);
-        // Inside another branch's tube too, a vertex would go out through it.
+        // Inside another branch's tube too, a vertex would go out through it; not so inside a joint's
+        // sphere, which all its branches share (a soma's, with dendrites from its centre).
         if (!std::isfinite(d.distance) || cones.inside_other_branch(p, d.branch)) continue;
         radius[v] = d.radius;
       }

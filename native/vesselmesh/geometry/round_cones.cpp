@@ -224,7 +224,8 @@ bool RoundCones::inside_other_branch(const Vec3& p, int32_t branch) const {
   double limit = 0.0;  // only the boxes that hold p can hold a cone that holds it
   tight_.search([&](const Box& b) { return b.signed_distance(p); }, limit,
                 [&](int32_t e) {
-                  if (cones_[e].branch != branch && cone_distance(cones_[e], p).distance < 0)
+                  if (cones_[e].branch != branch && cone_distance(cones_[e], p).distance < 0 &&
+                      !meet_near(branch, cones_[e].branch, p))
                     inside = true, limit = -kInf;
                 });
   return inside;

@@ -88,7 +88,8 @@ class RoundCones {
   /// True when some cone is crowded.
   bool any_crowded() const { return any_crowded_; }
 
-  /// True when `p` lies inside a cone of a branch other than `branch`.
+  /// True when `p` lies inside a cone of a branch other than `branch`, one that does not merely meet it
+  /// at a joint near `p` (inside a joint's sphere, a soma's, every branch there holds the point).
   bool inside_other_branch(const Vec3& p, int32_t branch) const;
 
   /// True when `p` and `q` are near edges of two different branches whose tubes overlap, or of one
