@@ -261,6 +261,12 @@ bool RoundCones::folds_onto(int32_t e, int32_t f) const {
   const double length = std::max(arc_[b.edges.back()][0], arc_[b.edges.back()][1]);  // the branch's
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
+  // Edges whose points all lie within the smallest reach of each other along the branch only turn
+  // together (most pairs of neighbouring edges of a densely sampled branch): no piece needs a look.
+  double farthest = 0;
+  for (double x : arc_[e])
+    for (double y : arc_[f]) farthest = std::max(farthest, std::abs(x - y));
+  if (farthest <= kJointReach * (std::min(k.r0, k.r1) + std::min(l.r0, l.r1))) return false;
   constexpr int kPieces = 8;
   for (int i = 0; i < kPieces; ++i)
     for (int j = 0; j < kPieces; ++j) {
