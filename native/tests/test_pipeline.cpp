@@ -275,7 +275,7 @@ TEST(SharedFidelity, HumanBrainArteriesAtLevelTwoAreWithinTwoPercentMedianAndEig
   const FidelityReport f = uniform_level_two_fidelity(path);
   EXPECT_LE(f.abs_relative_error.median, 0.02);  // 0.011 measured
   EXPECT_LE(f.abs_relative_error.p95, 0.08);     // 0.028 measured (0.052 without the fit)
-  EXPECT_LE(f.area_off_tubes, 0.01);             // 0.0013 measured
+  EXPECT_LE(f.area_off_tubes, 0.01);             // 0.0012 measured
 }
 
 TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95OnItsTubes) {
@@ -285,13 +285,13 @@ TEST(SharedFidelity, BravaAtLevelTwoIsWithinTwoPercentMedianAndEightPercentP95On
   // 90° corners of a tracing whose points are 4.4 radii apart.
   EXPECT_LE(f.abs_relative_error.median, 0.02);
   EXPECT_LE(f.abs_relative_error.p95, 0.08);
-  EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0031 measured
+  EXPECT_LE(f.area_off_tubes, 0.01);  // 0.0029 measured
 }
 
-// Not met yet: on neuron-hemibrain-da1, 4.8 % of the surface's area lies over half a radius off the tubes
+// Not met yet: on neuron-hemibrain-da1, 4.7 % of the surface's area lies over half a radius off the tubes
 // at level 2, on the convex hulls of joints merged where no square, tilted or not, parts them (chains of
-// fat branches shorter than their radius), though every vertex lies within 3 % of the tubes at the 95th
-// percentile. Run with --gtest_also_run_disabled_tests.
+// fat branches shorter than their radius), up to 9 radii off, though every vertex lies within 3 % of the
+// tubes at the 95th percentile. Run with --gtest_also_run_disabled_tests.
 TEST(SharedFidelity, DISABLED_HemibrainSurfaceFollowsItsTubes) {
   SHARED_DATA_OR_SKIP(path, "neuron-hemibrain-da1/1734350788.swc");
   EXPECT_LE(uniform_level_two_fidelity(path).area_off_tubes, 0.01);
