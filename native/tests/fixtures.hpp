@@ -272,6 +272,29 @@ inline CenterlineData soma(double scale) {
   return d;
 }
 
+/// The soma of `soma` with six dendrites from its surface, along +x and `degrees` from it, −x, −y and ±z:
+/// each from 14.5 out (radius 1.5) to a fork at 38.5 (1.23) and on to 58.5 (1.1), with a side branch of
+/// radius 0.8, 24 long, from the fork; the two close ones' side branches turn towards each other.
+inline CenterlineData soma_with_close_dendrites(double degrees, double scale) {
+  CenterlineData d = start(Vec3::Zero(), 10 * scale);
+  const double a = degrees * M_PI / 180;
+  const Vec3 dendrites[] = {Vec3(1, 0, 0),  Vec3(std::cos(a), std::sin(a), 0),
+                            Vec3(-1, 0, 0), Vec3(0, -1, 0),
+                            Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+  const Vec3 towards[] = {Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 1, 1),
+                          Vec3(1, 0, 1), Vec3(1, 1, 0),  Vec3(0, 1, 1)};
+  for (int i = 0; i < 6; ++i) {
+    const Vec3 u = dendrites[i];
+    const Vec3 side = (u + (towards[i] - towards[i].dot(u) * u).normalized()).normalized();
+    const int32_t first = run(d, 0, 14.5 * scale * u, 1, 1.5 * scale);
+    const int32_t fork = run(d, first, 38.5 * scale * u, 6, 1.23 * scale);
+    const int32_t twig = run(d, fork, d.points[fork] + 4 * scale * side, 1, 0.8 * scale);
+    run(d, twig, d.points[twig] + 20 * scale * side, 5, 0.8 * scale);
+    run(d, fork, 58.5 * scale * u, 5, 1.1 * scale);
+  }
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
@@ -297,17 +320,14 @@ inline std::vector<Named> joint_kinds() {
       {"two_loops_in_one_patch", two_loops_in_one_patch, 2},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius",
-       [](double s) {
-         return star({{8, 0, 1}, {8, 180, 1}}, s);
-       },
-       0},
+      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
       {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
       {"side_branches_in_a_row", side_branches_in_a_row, 0},
       {"soma", soma, 0},
+      {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0},
   };
 }
 

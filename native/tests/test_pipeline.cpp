@@ -113,6 +113,18 @@ TEST(Pipeline, SomaWithDendritesFromItsCentreHasItsSphereAtEveryScale) {
   }
 }
 
+// Not met yet: two dendrites leaving a soma 5° apart overlap for most of their length, their squares
+// cannot part, and the soma's joint merges with both their forks: one convex hull from the soma to the
+// forks, 32 % of the surface's area over half a radius off the tubes at level 2. Run with
+// --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_SomaWithDendritesFiveDegreesApartFollowsItsTubes) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::soma_with_close_dendrites(5, scale));
+    const FidelityReport f = radius_fidelity(mesh_at(g, 2, Caps::flat, Refinement::uniform).mesh, g);
+    EXPECT_LE(f.area_off_tubes, 0.05) << "scale " << scale;
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {
