@@ -452,7 +452,8 @@ class Tiler {
           kind_[b] = Kind::tunnel;
           ++mesh_.absorbed_branches;
           ++mesh_.tunnels;
-        } else if (shared_tries_[b]++ < kSharedTries && best_shared_square(b) > 0) {
+        } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
+          ++shared_tries_[b];
           kind_[b] = Kind::shared;
           shared_up_[b] = any_perpendicular(shared_normal_[b]);
         } else {
