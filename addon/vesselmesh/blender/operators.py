@@ -227,8 +227,9 @@ class VESSELMESH_OT_check(bpy.types.Operator):
         graph = meshing.centerline_graph(**mesh_data.read_centerline(centerline, context.evaluated_depsgraph_get()),
                                          default_radius=settings.default_radius)
         report = core().check(*mesh_data.triangles(surface.data), graph)
-        # Where the centerline's own tubes overlap, a surface that follows them crosses itself: say where.
+        # Where the centerline's own tubes overlap, the surface cannot follow both: say where.
         report["input_overlaps"] = graph.summary()["overlaps"]
+        places = len(report["input_overlaps"])
         stats = json.loads(surface.vesselmesh.stats or "{}")
         stats["check"] = report
         surface.vesselmesh.stats = json.dumps(stats)
@@ -237,7 +238,7 @@ class VESSELMESH_OT_check(bpy.types.Operator):
         self.report({level}, f"{surface.name}: {'closed manifold' if report['closed_manifold'] else 'NOT closed'}, "
                              f"genus {topology['genus']}, {crossing['pairs']} crossing triangle pairs "
                              f"({crossing['pairs_in_overlapping_tubes']} where the centerline's tubes overlap, "
-                             f"at {len(report['input_overlaps'])} places), "
+                             f"at {places} place{'' if places == 1 else 's'}), "
                              f"radius error median {report['fidelity']['abs_relative_error']['median']:.1%}, "
                              f"{report['fidelity']['area_off_tubes']:.1%} of its area off the tubes")
         return {"FINISHED"}

@@ -83,8 +83,9 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
             col.label(text=("Closed manifold" if check["closed_manifold"] else "Not a closed manifold")
                       + f", genus {check['topology']['genus']}")
             col.label(text=f"{check['intersections']['pairs']} crossing triangle pairs")
-            if check.get("input_overlaps"):
-                col.label(text=f"Centerline's tubes overlap at {len(check['input_overlaps'])} places")
+            places = len(check.get("input_overlaps", []))
+            if places:
+                col.label(text=f"Centerline's tubes overlap at {places} place{'' if places == 1 else 's'}")
             col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
             col.label(text=f"Area off the tubes: {check['fidelity']['area_off_tubes']:.1%}")
         layout.operator("vesselmesh.check", icon="CHECKMARK")
