@@ -66,13 +66,16 @@ def _points(obj):
     return points.reshape(-1, 3)
 
 
-def test_fit_setting_reaches_the_core_and_is_kept_for_regeneration(project_data):
-    centerline, fitted = import_file(project_data / "bifurcation.swc")
-    assert centerline.vesselmesh.settings.fit == "onto"
-    assert json.loads(fitted.vesselmesh.stats)["fitted_vertices"] > 0
-    centerline, plain = import_file(project_data / "bifurcation.swc", fit="none")
-    assert centerline.vesselmesh.settings.fit == "none"
-    assert json.loads(plain.vesselmesh.stats)["fitted_vertices"] == 0
+@pytest.mark.parametrize("file, setting, default, other, counted", [
+    ("bifurcation.swc", "fit", "onto", "none", "fitted_vertices"),
+    ("crossing.swc", "crossings", "separate", "keep", "separated_points")])
+def test_setting_reaches_the_core_and_is_kept_for_regeneration(project_data, file, setting, default, other, counted):
+    centerline, surface = import_file(project_data / file)
+    assert getattr(centerline.vesselmesh.settings, setting) == default
+    assert json.loads(surface.vesselmesh.stats)[counted] > 0
+    centerline, surface = import_file(project_data / file, **{setting: other})
+    assert getattr(centerline.vesselmesh.settings, setting) == other
+    assert json.loads(surface.vesselmesh.stats)[counted] == 0
 
 
 def test_default_settings_are_the_cores_defaults(project_data):
@@ -97,15 +100,19 @@ def test_check_surface_stores_the_checkers_report_on_the_surface(project_data):
 
 
 def test_check_surface_says_where_the_centerlines_tubes_overlap(tmp_path):
-    """A vessel that turns back across its own start, three times thinner there (no parting presses it out of
-    the thick tube): the surface's crossings are where the tubes overlap, and the report says where."""
+    """A vessel that turns back across its own start, three times thinner there: kept as it is, the surface's
+    crossings are where the tubes overlap, and the report says where; moved apart, the surface crosses
+    nowhere, and the report still says where the centerline's tubes overlap."""
     path = tmp_path / "crosses_itself.swc"
     path.write_text("1 1 0 0 0 1 -1\n2 1 10 0 0 1 1\n3 1 20 0 0 1 2\n4 1 0 10 0 1 1\n5 1 10 10 0.3 0.3 4\n"
                     "6 1 10 -10 0.3 0.3 5\n")
-    _, surface = import_file(path)
-    assert bpy.ops.vesselmesh.check() == {"FINISHED"}
-    report = json.loads(surface.vesselmesh.stats)["check"]
-    assert report["intersections"]["pairs"] > 0
-    assert report["intersections"]["pairs_in_overlapping_tubes"] == report["intersections"]["pairs"]
-    [overlap] = report["input_overlaps"]
-    assert np.allclose(overlap["at"], [10, 0, 0.15], atol=0.1)
+    for crossings in ("keep", "separate"):
+        _, surface = import_file(path, crossings=crossings)
+        assert bpy.ops.vesselmesh.check() == {"FINISHED"}
+        report = json.loads(surface.vesselmesh.stats)["check"]
+        pairs = report["intersections"]["pairs"]
+        assert pairs > 0 if crossings == "keep" else pairs == 0
+        assert report["intersections"]["pairs_in_overlapping_tubes"] == pairs
+        [overlap] = report["input_overlaps"]
+        assert np.allclose(overlap["at"], [10, 0, 0.15], atol=0.1)
+        assert overlap["crossing_pairs"] == overlap["edge_pairs"] > 0

@@ -2,7 +2,8 @@
 //   vesselmesh info FILE [--json] [--radius-array NAME]
 //   vesselmesh synth -o FILE --sections N [--loops K] [--seed S] [--binary]
 //   vesselmesh mesh IN -o OUT.{ply,obj,stl} [--levels N] [--sampling ...] [--alpha A] [--beta B]
-//                   [--caps flat|open] [--fit onto|inward|none] [--stats-json FILE] [--curvature]
+//                   [--caps flat|open] [--crossings separate|keep] [--fit onto|inward|none]
+//                   [--stats-json FILE] [--curvature]
 //   vesselmesh check MESH [--centerline IN] [--json]
 #include <CLI/CLI.hpp>
 #ifdef __GLIBC__
@@ -48,12 +49,17 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
             << n["merged_points"] << " coincident points, dropped " << n["zero_length_edges"]
             << " zero-length and " << n["duplicate_edges"] << " duplicate edges and " << n["isolated_points"]
             << " isolated points\n";
-  // Where the input's tubes overlap, the surface cannot follow both without crossing itself or pressing
-  // them flat against each other: worth knowing before meshing.
+  // Where the input's tubes overlap, the surface cannot follow both without crossing itself, pressing
+  // them flat against each other or moving them apart: worth knowing before meshing.
   const auto& overlaps = j["overlaps"];
+  const auto crossing = std::count_if(overlaps.begin(), overlaps.end(), [](const auto& o) {
+    return o["crossing_pairs"].template get<int>() > 0;
+  });
   std::cout << "  overlaps    " << overlaps.size() << (overlaps.size() == 1 ? " place" : " places")
             << " where tubes overlap away from their joints (vessels crossing, touching or traced along "
-               "each other)\n";
+               "each other)";
+  if (crossing > 0) std::cout << "; at " << crossing << " they cross, and mesh moves them apart";
+  std::cout << "\n";
   constexpr std::size_t kShown = 10;
   std::ostringstream places;
   places << std::setprecision(4);
@@ -61,7 +67,8 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
     const auto& o = overlaps[i];
     places << "              at (" << o["at"][0].get<double>() << ", " << o["at"][1].get<double>() << ", "
            << o["at"][2].get<double>() << "), radius " << o["radius"].get<double>() << ", " << o["edge_pairs"]
-           << (o["edge_pairs"] == 1 ? " edge pair" : " edge pairs") << "\n";
+           << (o["edge_pairs"] == 1 ? " edge pair" : " edge pairs")
+           << (o["crossing_pairs"] > 0 ? ", crossing" : "") << "\n";
   }
   std::cout << places.str();
   if (overlaps.size() > kShown) std::cout << "              ... (all of them: --json)\n";
@@ -152,6 +159,9 @@ int main(int argc, char** argv) {
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
       ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");
+  mesh->add_option("--crossings", mesh_options.crossings,
+                   "vessels whose tubes cross away from a joint: move them apart (separate) or keep them")
+      ->transform(CLI::CheckedTransformer(crossings_names()));
   mesh->add_option("--fit", mesh_options.fit,
                    "which vertices come onto the input's tubes: all (onto), those outside (inward), none")
       ->transform(CLI::CheckedTransformer(fit_names()));

@@ -234,9 +234,11 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
-         const std::string& caps, bool curvature, const std::string& method, int uniform_levels, double threshold,
-         const std::string& measure, double angle, const std::string& fit) {
+         const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
+         double threshold, const std::string& measure, double angle, const std::string& crossings,
+         const std::string& fit) {
         MeshOptions o;
+        o.crossings = choice("crossings", crossings, crossings_names());
         o.fit = choice("fit", fit, fit_names());
         o.subdivision.levels = levels;
         o.subdivision.method = choice("method", method, refinement_names());
@@ -266,13 +268,17 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
-      py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("fit") = "onto",
-      "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 (counter-clockwise\n"
+      py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("crossings") = "separate",
+      py::arg("fit") = "onto",
+      "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 "
+      "(counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
       "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
-      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or 'dihedral';\n"
+      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or "
+      "'dihedral';\n"
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
       "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
+      "crossings: vessels whose tubes cross away from a joint, 'separate' (moved apart) or 'keep'.\n"
       "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.");
 
   m.def(

@@ -295,6 +295,31 @@ inline CenterlineData soma_with_close_dendrites(double degrees, double scale) {
   return d;
 }
 
+/// Two vessels crossing like an X, as a tracing may give them: one of radius 1 along x, 20 long in 40
+/// edges, and one of radius 0.5 along y at x = 0.25, `apart` radii above it (0: through its axis); two
+/// components.
+inline CenterlineData crossing(double apart, double scale) {
+  CenterlineData d = start(Vec3(-10 * scale, 0, 0), scale);
+  run(d, 0, Vec3(10 * scale, 0, 0), 40, scale);
+  d.points.push_back(Vec3(0.25 * scale, -10 * scale, apart * scale));
+  d.radius.push_back(0.5 * scale);
+  run(d, static_cast<int32_t>(d.points.size()) - 1, Vec3(0.25 * scale, 10 * scale, apart * scale), 40,
+      0.5 * scale);
+  return d;
+}
+
+/// A trunk of radius 1 along +z, 20 long, whose side branch (radius 0.4) leaves it at z = −5, runs 4
+/// out along +x, 8 up, and back across through the trunk's tube at z = 3, 0.2 off its axis, to x = −6.
+inline CenterlineData loop_through_parent(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -10 * scale), scale);
+  const int32_t joint = run(d, 0, Vec3(0, 0, -5 * scale), 10, scale);
+  run(d, joint, Vec3(0, 0, 10 * scale), 30, scale);
+  int32_t p = run(d, joint, Vec3(4 * scale, 0, -5 * scale), 8, 0.4 * scale);
+  p = run(d, p, Vec3(4 * scale, 0.2 * scale, 3 * scale), 16, 0.4 * scale);
+  run(d, p, Vec3(-6 * scale, 0.2 * scale, 3 * scale), 20, 0.4 * scale);
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);

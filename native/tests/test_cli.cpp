@@ -30,10 +30,10 @@ CliRun run_cli(const std::string& args) {
 }
 
 /// The --stats-json of `vesselmesh mesh` on the project's bifurcation with the given options.
-nlohmann::json mesh_stats(const std::string& options) {
+nlohmann::json mesh_stats(const std::string& options, const std::string& input = "bifurcation.swc") {
   const std::string stats = vesselmesh::test::temp_path("stats.json");
   const CliRun run =
-      run_cli("mesh '" + vesselmesh::test::test_data("bifurcation.swc") + "' -o '" +
+      run_cli("mesh '" + vesselmesh::test::test_data(input) + "' -o '" +
               vesselmesh::test::temp_path("m.ply") + "' " + options + " --stats-json '" + stats + "'");
   EXPECT_EQ(run.status, 0) << options << ": " << run.output;
   std::ifstream file(stats);
@@ -128,10 +128,13 @@ TEST(Cli, InfoTellsWhereTheInputTubesOverlap) {
   const CliRun run = run_cli("info '" + path + "'");
   EXPECT_EQ(run.status, 0);
   EXPECT_NE(run.output.find("overlaps    1 place where"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("at (10, 0, 0.15), radius 1, 2 edge pairs"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("at 1 they cross, and mesh moves them apart"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("at (10, 0, 0.15), radius 1, 2 edge pairs, crossing"), std::string::npos)
+      << run.output;
   const nlohmann::json j = info_json(path);
   ASSERT_EQ(j["overlaps"].size(), 1u);
   EXPECT_EQ(j["overlaps"][0]["edge_pairs"], 2);
+  EXPECT_EQ(j["overlaps"][0]["crossing_pairs"], 2);
   EXPECT_TRUE(info_json(vesselmesh::test::test_data("ring_with_tail.vtk"))["overlaps"].empty());
 }
 
@@ -201,10 +204,21 @@ TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
   EXPECT_EQ(mesh_stats("--fit none")["stages"].back()["stage"], "subdivide");
 }
 
+TEST(Cli, MeshMovesCrossingVesselsApartUnlessToldToKeepThem) {
+  const nlohmann::json separated = mesh_stats("", "crossing.swc");
+  EXPECT_GT(separated["crossings"].get<int64_t>(), 0);
+  EXPECT_GT(separated["separated_points"].get<int64_t>(), 0);
+  EXPECT_EQ(separated["crossings_left"], 0);
+  EXPECT_EQ(separated["stages"].front()["stage"], "separate");
+  const nlohmann::json kept = mesh_stats("--crossings keep", "crossing.swc");
+  EXPECT_EQ(kept["separated_points"], 0);
+  EXPECT_EQ(kept["stages"].front()["stage"], "tile");
+}
+
 TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
   const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",
-                              "--uniform-levels -1", "--fit outward"}) {
+                              "--uniform-levels -1", "--fit outward", "--crossings merge"}) {
     const CliRun run =
         run_cli("mesh '" + in + "' -o '" + vesselmesh::test::temp_path("m.ply") + "' " + options);
     EXPECT_NE(run.status, 0) << options;

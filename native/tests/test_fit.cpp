@@ -21,6 +21,7 @@ namespace {
 TriMesh limit_surface(const CenterlineGraph& g) {
   MeshOptions o;
   o.subdivision.method = Refinement::uniform;
+  o.crossings = Crossings::keep;  // the fit's own parting of crossing tubes is what some tests look at
   o.fit = Fit::none;
   return mesh_centerline(g, o).mesh;
 }
@@ -244,10 +245,10 @@ TEST(Fit, StageIsPartOfThePipelineAndCanBeLeftOut) {
   const MeshResult with = mesh_centerline(g, o);
   o.fit = Fit::none;
   const MeshResult without = mesh_centerline(g, o);
-  EXPECT_EQ(with.stages[3].stage, "fit");
+  EXPECT_EQ(with.stages.back().stage, "fit");
   EXPECT_GT(with.fitted_vertices, 0);
   EXPECT_EQ(without.fitted_vertices, 0);
-  EXPECT_EQ(without.stages.size(), 3u);
+  EXPECT_EQ(without.stages.size(), with.stages.size() - 1);
   EXPECT_EQ(with.mesh.faces, without.mesh.faces);
   EXPECT_LT(largest_error(with.mesh, g), largest_error(without.mesh, g));
 }

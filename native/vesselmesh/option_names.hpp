@@ -20,6 +20,12 @@ inline const std::map<std::string, Caps>& caps_names() {
   return names;
 }
 
+inline const std::map<std::string, Crossings>& crossings_names() {
+  static const std::map<std::string, Crossings> names{{"separate", Crossings::separate},
+                                                      {"keep", Crossings::keep}};
+  return names;
+}
+
 inline const std::map<std::string, Fit>& fit_names() {
   static const std::map<std::string, Fit> names{{"onto", Fit::onto}, {"inward", Fit::inward}, {"none", Fit::none}};
   return names;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -25,11 +26,29 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   };
 
   auto start = Clock::now();
+  // The tubes the surface follows, built once for the separate stage and the fit, and again only where
+  // the separate stage moved the centerline.
+  std::optional<RoundCones> cones;
+  if (options.crossings == Crossings::separate || options.fit != Fit::none) cones.emplace(graph);
+  const CenterlineGraph* centerline = &graph;
+  Separation separation;
+  if (options.crossings == Crossings::separate) {
+    separation = separate_crossings(graph, *cones);
+    result.crossings = separation.crossings;
+    result.separated_points = separation.moved_points;
+    result.largest_separation = separation.largest_move;
+    result.crossings_left = separation.left;
+    if (separation.moved_points > 0) centerline = &separation.graph, cones.emplace(separation.graph);
+    record("separate", start, static_cast<int64_t>(graph.points.size()),
+           static_cast<int64_t>(graph.edges.size()));
+  }
+
+  start = Clock::now();
   TileOptions tile;
   tile.sampling = options.sampling;
   tile.caps = options.caps;
   tile.radius_scale = subdivision_radius_scale();
-  const BaseMesh base = tile_base_mesh(graph, tile);
+  const BaseMesh base = tile_base_mesh(*centerline, tile);
   record("tile", start, static_cast<int64_t>(base.vertices.size()),
          static_cast<int64_t>(base.quads.size() + base.triangles.size()));
   result.sections = base.sections;
@@ -51,7 +70,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
          static_cast<int64_t>(result.mesh.faces.size()));
   if (options.fit != Fit::none) {
     start = Clock::now();
-    const FitStats fit = fit_to_tubes(result.mesh, graph, options.fit);
+    const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
     result.fitted_vertices = fit.moved;
     result.parted_vertices = fit.parted;
     record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
@@ -75,6 +94,10 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["joint_patches"] = result.joint_patches;
   j["absorbed_branches"] = result.absorbed_branches;
   j["tunnels"] = result.tunnels;
+  j["crossings"] = result.crossings;
+  j["separated_points"] = result.separated_points;
+  j["largest_separation"] = result.largest_separation;
+  j["crossings_left"] = result.crossings_left;
   j["fitted_vertices"] = result.fitted_vertices;
   j["parted_vertices"] = result.parted_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/separate/separate.hpp"
 
 namespace vesselmesh {
 
@@ -30,9 +31,12 @@ std::string summary_json(const CenterlineGraph& g, int indent) {
                         {"merged_points", r.merged_points},     {"zero_length_edges", r.zero_length_edges},
                         {"duplicate_edges", r.duplicate_edges}, {"isolated_points", r.isolated_points}};
   nlohmann::ordered_json overlaps = nlohmann::ordered_json::array();
-  for (const TubeOverlap& o : tube_overlaps(g))
-    overlaps.push_back(
-        {{"at", {o.at.x(), o.at.y(), o.at.z()}}, {"radius", o.radius}, {"edge_pairs", o.edge_pairs}});
+  const RoundCones cones(g);
+  for (const TubeOverlap& o : tube_overlaps(g, cones, crossing_edges(g, cones)))
+    overlaps.push_back({{"at", {o.at.x(), o.at.y(), o.at.z()}},
+                        {"radius", o.radius},
+                        {"edge_pairs", o.edge_pairs},
+                        {"crossing_pairs", o.crossing_pairs}});
   j["overlaps"] = overlaps;
   return j.dump(indent);
 }

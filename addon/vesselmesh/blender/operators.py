@@ -285,6 +285,7 @@ def draw_settings(layout, settings):
     col.prop(settings, "alpha")
     col.prop(settings, "beta")
     col.prop(settings, "caps")
+    col.prop(settings, "crossings")
     col.prop(settings, "fit")
     col.prop(settings, "default_radius")
     col.prop(settings, "curvature")

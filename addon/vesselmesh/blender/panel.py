@@ -76,6 +76,9 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
         col.label(text=f"{stats['wall_seconds']:.2f} s in all, core {stats['seconds']:.2f} s")
         for stage in stats["stages"]:
             col.label(text=f"    {stage['stage']}: {stage['seconds']:.3f} s, {stage['faces']:,} faces")
+        if stats.get("separated_points"):
+            col.label(text=f"Crossing vessels moved apart: {stats['separated_points']:,} points, "
+                           f"up to {stats['largest_separation']:.1f} radii")
         check = stats.get("check")
         col = layout.column(align=True)
         if check:
@@ -83,9 +86,11 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
             col.label(text=("Closed manifold" if check["closed_manifold"] else "Not a closed manifold")
                       + f", genus {check['topology']['genus']}")
             col.label(text=f"{check['intersections']['pairs']} crossing triangle pairs")
-            places = len(check.get("input_overlaps", []))
-            if places:
-                col.label(text=f"Centerline's tubes overlap at {places} place{'' if places == 1 else 's'}")
+            overlaps = check.get("input_overlaps", [])
+            if overlaps:
+                crossing = sum(o.get("crossing_pairs", 0) > 0 for o in overlaps)
+                col.label(text=f"Centerline's tubes overlap at {len(overlaps)} place{'' if len(overlaps) == 1 else 's'}"
+                               + (f", crossing at {crossing}" if crossing else ""))
             col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
             col.label(text=f"Area off the tubes: {check['fidelity']['area_off_tubes']:.1%}")
         layout.operator("vesselmesh.check", icon="CHECKMARK")

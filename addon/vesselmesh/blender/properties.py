@@ -49,6 +49,12 @@ class MeshSettings:
                          description="Section spacing, in diameters on straight parts")
     beta: FloatProperty(name="Bend β", default=4.0, min=0.0, soft_max=20.0,
                         description="How much sections crowd where the centerline bends")
+    crossings: EnumProperty(
+        name="Crossings", default="separate",
+        description="Vessels whose tubes cross away from any joint (a tracing put them too close)",
+        items=[("separate", "Separate", "Move them apart, the thinner by as much of its radius as the thicker: "
+                                        "a surface that never crosses itself"),
+               ("keep", "Keep", "Leave the centerline as it is: the surfaces cross where the tubes do")])
     fit: EnumProperty(
         name="Fit", default="onto", description="Bring the smooth surface onto the centerline's tubes",
         items=[("onto", "Onto Tubes", "Every vertex within 3 % of the radius the file gives: crotches and bends "

@@ -9,7 +9,7 @@ from .native import core
 
 # The keyword arguments of vesselmesh_core.mesh that the add-on's settings carry, by the same names.
 MESH_OPTIONS = ("levels", "method", "uniform_levels", "threshold", "measure", "angle", "sampling", "alpha", "beta",
-                "caps", "fit")
+                "caps", "crossings", "fit")
 
 
 def read_centerline(path, scale=1.0):

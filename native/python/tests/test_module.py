@@ -121,9 +121,18 @@ def test_fit_brings_the_crotch_onto_the_tubes_and_can_be_left_out(project_data):
     assert furthest_out[0] <= 0.031 < furthest_out[1]
 
 
+def test_crossing_vessels_are_moved_apart_unless_kept(project_data):
+    graph = vm.Graph.read(str(project_data / "crossing.swc"))
+    separated, kept = vm.mesh(graph, levels=1), vm.mesh(graph, levels=1, crossings="keep")
+    assert separated["stats"]["separated_points"] > 0 and kept["stats"]["separated_points"] == 0
+    assert vm.check(separated["vertices"], separated["faces"], graph)["intersections"]["pairs"] == 0
+    crossed = vm.check(kept["vertices"], kept["faces"], graph)["intersections"]
+    assert crossed["pairs"] == crossed["pairs_in_overlapping_tubes"] > 0
+
+
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
-                                    dict(angle=-1.0), dict(fit="outward")])
+                                    dict(angle=-1.0), dict(fit="outward"), dict(crossings="merge")])
 def test_mesh_rejects_unknown_options(project_data, kwargs):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     with pytest.raises((ValueError, vm.InputError)):

@@ -300,12 +300,15 @@ int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::v
 }  // namespace
 
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
+  return fit_to_tubes(mesh, RoundCones(graph), fit);
+}
+
+FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   FitStats stats;
-  if (graph.edges.empty() || fit == Fit::none) return stats;
+  if (cones.size() == 0 || fit == Fit::none) return stats;
   const std::size_t n = mesh.vertices.size();
   std::vector<Vec3> move(n, Vec3::Zero());
   std::vector<double> radius(n, 0.0);
-  const RoundCones cones(graph);
   std::vector<int32_t> nearest_cone(n, -1);
   std::vector<double> outside(n, 0.0);
   closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside);

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/tri_mesh.hpp"
 
@@ -44,5 +45,8 @@ struct FitStats {
 /// crossings by the moves long enough to make one on their own (over a fifth of the local radius or half
 /// the vertex's shortest edge); shorter moves together can add a few where surfaces already cross.
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
+
+/// The same onto the tubes `cones` holds (built once for both the separate stage and the fit).
+FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit = Fit::onto);
 
 }  // namespace vesselmesh

@@ -16,7 +16,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNearTube = 1.5;    // a point is near a centerline edge within this many local radii
-constexpr double kJointReach = 3.0;  // radii round a shared joint where two branches merely meet
 constexpr double kCrowd = 0.5;       // radii between two tubes that count as crowding each other
 
 struct Ball {
@@ -253,8 +252,9 @@ bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
 // Whether two edges of one branch overlap where the branch comes back onto itself: parts of them that lie
 // more than kJointReach radii (of each) apart along the branch come within the sum of their radii. Parts
 // nearer along it merely turn together, as two branches merely meet within that reach of their joint.
-// Each edge is cut into at most 8 pieces, compared pairwise by their nearest points.
-bool RoundCones::folds_onto(int32_t e, int32_t f) const {
+// Each edge is cut into at most 8 pieces, compared pairwise by their nearest points. With `margin`,
+// parts that come within it of each other count too.
+bool RoundCones::folds_onto(int32_t e, int32_t f, double margin) const {
   if (e == f) return false;
   const Branch& b = graph_.branches[cones_[e].branch];
   const bool ring = b.points.front() == b.points.back();
@@ -275,7 +275,7 @@ bool RoundCones::folds_onto(int32_t e, int32_t f) const {
       const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
       const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
       const double rs = k.radius_at(s), rt = l.radius_at(t);
-      if ((k.point_at(s) - l.point_at(t)).norm() >= rs + rt) continue;
+      if ((k.point_at(s) - l.point_at(t)).norm() >= rs + rt + margin) continue;
       const double apart =
           std::abs(arc_[e][0] + s * (arc_[e][1] - arc_[e][0]) - arc_[f][0] - t * (arc_[f][1] - arc_[f][0]));
       if (std::min(apart, ring ? length - apart : apart) > kJointReach * (rs + rt)) return true;
@@ -314,18 +314,24 @@ bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
   return false;
 }
 
-std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges() const {
+std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) const {
   std::vector<std::array<int32_t, 2>> out;
-  tight_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
-    if (cones_[e].branch != cones_[f].branch ? overlap(e, f) : folds_onto(e, f))
+  // Boxes widened by kNearTube radii hold every pair within half the sum of their radii of each other.
+  (gap > 0 ? near_ : tight_).for_each_overlapping_pair([&](int32_t e, int32_t f) {
+    const RoundCone& k = cones_[e];
+    const RoundCone& l = cones_[f];
+    const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
+    if (k.branch != l.branch ? overlap(e, f, margin) : folds_onto(e, f, margin))
       out.push_back({std::min(e, f), std::max(e, f)});
   });
   std::sort(out.begin(), out.end());
   return out;
 }
 
-std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) {
-  const RoundCones cones(g);
+std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) { return tube_overlaps(g, RoundCones(g)); }
+
+std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g, const RoundCones& cones,
+                                       const std::vector<std::array<int32_t, 2>>& crossing) {
   const std::vector<std::array<int32_t, 2>> pairs = cones.overlapping_edges();
   // Edges of overlapping pairs, joined across each pair and to their neighbours along the graph that
   // overlap too: two vessels side by side along many edges make one place.
@@ -351,6 +357,7 @@ std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) {
     TubeOverlap& o = out[i];
     o.at += 0.5 * (k.point_at(s) + l.point_at(t));  // a sum until the end
     o.edge_pairs += 1;
+    o.crossing_pairs += std::binary_search(crossing.begin(), crossing.end(), std::array<int32_t, 2>{e, f});
     o.radius = std::max({o.radius, k.radius_at(s), l.radius_at(t)});
   }
   for (TubeOverlap& o : out) o.at /= static_cast<double>(o.edge_pairs);

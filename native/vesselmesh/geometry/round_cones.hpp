@@ -13,6 +13,10 @@
 
 namespace vesselmesh {
 
+/// Two branches merely meet within this many joint radii of the joint they share; parts of one branch
+/// nearer each other than this many radii along it merely turn together.
+constexpr double kJointReach = 3.0;
+
 /// One centerline edge: spheres of radius r0, r1 round c0, c1 and the cone tangent to both.
 struct RoundCone {
   Vec3 c0, c1;
@@ -38,19 +42,26 @@ struct TerminalCap {
   double radius;
 };
 
+class RoundCones;
+
 /// A place where the input's tubes overlap (two vessels crossing, touching, or traced along each other;
 /// a branch looping back onto itself): the union of the tubes has a handle there that the graph lacks, so
 /// a surface of the graph's genus cannot follow both tubes there. The fit presses the two surfaces flat
 /// against each other where it can; where it cannot (one tube mostly inside the other), they cross.
 struct TubeOverlap {
-  Vec3 at;             ///< mean of the overlapping edges' closest axis points
-  double radius;       ///< the largest radius there
-  int64_t edge_pairs;  ///< overlapping edge pairs it gathers
+  Vec3 at;                     ///< mean of the overlapping edges' closest axis points
+  double radius;               ///< the largest radius there
+  int64_t edge_pairs;          ///< overlapping edge pairs it gathers
+  int64_t crossing_pairs = 0;  ///< of those, the ones in tube_overlaps' `crossing` list
 };
 
-/// The places where `g`'s tubes overlap (RoundCones::overlapping_edges), overlapping edge pairs joined
-/// into one place where they share an edge or their edges are neighbours along the graph; ordered by
-/// position in the file (their first edge).
+/// The places where the tubes of `cones`' graph `g` overlap (RoundCones::overlapping_edges), overlapping
+/// edge pairs joined into one place where they share an edge or their edges are neighbours along the
+/// graph; ordered by position in the file (their first edge). Each counts its pairs that are in
+/// `crossing` (sorted, as crossing_edges gives them).
+std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g, const RoundCones& cones,
+                                       const std::vector<std::array<int32_t, 2>>& crossing = {});
+/// The same with the graph's own round cones.
 std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g);
 
 /// Signed distance from `p` to the surface of round cone `k`.
@@ -80,6 +91,7 @@ class RoundCones {
   bool meet_near(int32_t a, int32_t b, const Vec3& p) const;
 
   const RoundCone& cone(int32_t e) const { return cones_[e]; }
+  std::size_t size() const { return cones_.size(); }
 
   /// True when cone `e`'s tube comes within half a radius of a tube of another branch, away from the
   /// joints the two share: only near such a cone can a point on its surface lie in another vessel's tube
@@ -101,13 +113,14 @@ class RoundCones {
   bool near_cap(const Vec3& p) const;
 
   /// The pairs of edges (e < f) whose tubes overlap as in_overlapping_tubes() counts it: of two branches
-  /// away from the joints they share, or of one branch that comes back onto itself.
-  std::vector<std::array<int32_t, 2>> overlapping_edges() const;
+  /// away from the joints they share, or of one branch that comes back onto itself. With `gap` > 0 (at
+  /// most 0.5), also those whose tubes come within `gap` times the sum of their larger radii of each other.
+  std::vector<std::array<int32_t, 2>> overlapping_edges(double gap = 0) const;
 
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;
   bool overlap(int32_t e, int32_t f, double margin = 0) const;
-  bool folds_onto(int32_t e, int32_t f) const;
+  bool folds_onto(int32_t e, int32_t f, double margin = 0) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;
 

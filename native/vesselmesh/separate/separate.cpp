@@ -1,0 +1,278 @@
+#include "vesselmesh/separate/separate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <queue>
+#include <set>
+#include <unordered_map>
+#include <utility>
+
+#include "vesselmesh/frames/frames.hpp"
+#include "vesselmesh/geometry/closest_point.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+constexpr double kGap = 0.2;  // separated tubes lie this fraction of the sum of their radii apart
+constexpr int kRounds = 8;
+constexpr double kStep = 0.25;  // points added along a crossing edge lie this fraction of the radii apart
+
+// Where an edge lies on its branch: edges[index] of branches[branch], walked from points[index] when
+// `forward`, else from points[index + 1].
+struct OnBranch {
+  int32_t branch = -1, index = 0;
+  bool forward = true;
+};
+
+std::vector<OnBranch> edges_on_branches(const CenterlineGraph& g) {
+  std::vector<OnBranch> out(g.edges.size());
+  for (std::size_t b = 0; b < g.branches.size(); ++b)
+    for (std::size_t i = 0; i < g.branches[b].edges.size(); ++i) {
+      const int32_t e = g.branches[b].edges[i];
+      out[e] = {static_cast<int32_t>(b), static_cast<int32_t>(i), g.edges[e][0] == g.branches[b].points[i]};
+    }
+  return out;
+}
+
+// Per branch, the arc length at each of its points.
+std::vector<std::vector<double>> branch_arcs(const CenterlineGraph& g) {
+  std::vector<std::vector<double>> arcs(g.branches.size());
+  for (std::size_t b = 0; b < g.branches.size(); ++b) {
+    const std::vector<int32_t>& points = g.branches[b].points;
+    arcs[b].assign(points.size(), 0.0);
+    for (std::size_t i = 1; i < points.size(); ++i)
+      arcs[b][i] = arcs[b][i - 1] + (g.points[points[i]] - g.points[points[i - 1]]).norm();
+  }
+  return arcs;
+}
+
+// Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
+// `limit` (a Dijkstra search that goes no further than that).
+bool near_along_graph(const CenterlineGraph& g, int32_t e, double s, int32_t f, double t, double limit) {
+  auto length = [&](int32_t edge) {
+    return (g.points[g.edges[edge][1]] - g.points[g.edges[edge][0]]).norm();
+  };
+  if (e == f) return std::abs(s - t) * length(e) < limit;
+  std::unordered_map<int32_t, double> reached;
+  using Entry = std::pair<double, int32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  auto reach = [&](int32_t v, double d) {
+    if (d >= limit) return;
+    auto [it, fresh] = reached.emplace(v, d);
+    if (!fresh && it->second <= d) return;
+    it->second = d;
+    queue.push({d, v});
+  };
+  reach(g.edges[e][0], s * length(e));
+  reach(g.edges[e][1], (1 - s) * length(e));
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > reached[v]) continue;
+    if ((v == g.edges[f][0] && d + t * length(f) < limit) ||
+        (v == g.edges[f][1] && d + (1 - t) * length(f) < limit))
+      return true;
+    for (int32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
+      const int32_t w = g.other(g.incident[k], v);
+      reach(w, d + (g.points[w] - g.points[v]).norm());
+    }
+  }
+  return false;
+}
+
+// How far along branch a from its end at joint j its axis lies all the way within its own radius of a
+// tube of branch b: as far as the two tubes overlap from the joint on, as at a fork at a small angle.
+// Samples every half radius, and stops at the first that lies out of b's tube.
+double overlap_from_joint(const CenterlineGraph& g, const RoundCones& cones, int32_t a, int32_t b,
+                          int32_t j) {
+  const Branch& branch = g.branches[a];
+  const bool from_front = branch.points.front() == j;
+  const int32_t n = static_cast<int32_t>(branch.edges.size());
+  double arc = 0;
+  for (int32_t step = 0; step < n; ++step) {
+    const int32_t edge = branch.edges[from_front ? step : n - 1 - step];
+    const RoundCone& k = cones.cone(edge);
+    const bool c0_first = g.edges[edge][0] == branch.points[from_front ? step : n - step];
+    const double length = (k.c1 - k.c0).norm();
+    const int samples = 1 + static_cast<int>(std::ceil(length / (0.5 * std::min(k.r0, k.r1))));
+    for (int q = 0; q <= samples; ++q) {
+      const double u = static_cast<double>(q) / samples, param = c0_first ? u : 1 - u;
+      const std::vector<ConeDistance> near = cones.within(k.point_at(param), k.radius_at(param));
+      if (std::none_of(near.begin(), near.end(), [&](const ConeDistance& d) { return d.branch == b; }))
+        return arc + u * length;
+    }
+    arc += length;
+  }
+  return arc;
+}
+
+// `g` with points added along the edges of `crossing` pairs, kStep times the two radii apart within
+// twice kJointReach times the radii of where they cross, so that the moves bend the vessels there rather
+// than shift whole edges of a coarse tracing. The tubes stay the same: a round cone is the union of the
+// spheres along its axis with linearly varying radii, and so is each piece of it.
+CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const RoundCones& cones,
+                                              const std::vector<std::array<int32_t, 2>>& crossing) {
+  std::vector<std::vector<double>> cuts(g.edges.size());  // per edge, parameters to add points at
+  for (const auto& [e, f] : crossing) {
+    const auto [s, t] =
+        closest_parameters(cones.cone(e).c0, cones.cone(e).c1, cones.cone(f).c0, cones.cone(f).c1);
+    const double radii = cones.cone(e).radius_at(s) + cones.cone(f).radius_at(t);
+    for (const auto& [edge, at] : {std::pair{e, s}, std::pair{f, t}}) {
+      const double length = (cones.cone(edge).c1 - cones.cone(edge).c0).norm(), step = kStep * radii / length;
+      // Half a step off where they cross: where two axes meet, the two edges' points must not.
+      constexpr int kSteps = static_cast<int>(2 * kJointReach / kStep);
+      for (int k = -kSteps; k < kSteps; ++k) {
+        const double u = at + (k + 0.5) * step;
+        if (u > 0.5 * step && u < 1 - 0.5 * step) cuts[edge].push_back(u);
+      }
+    }
+  }
+  CenterlineData d;
+  d.points = g.points;
+  d.edges.reserve(g.edges.size());
+  d.roots = g.roots;
+  if (!g.radius_per_edge) d.radius = g.radius;
+  for (std::size_t e = 0; e < g.edges.size(); ++e) {
+    std::vector<double>& at = cuts[e];
+    std::sort(at.begin(), at.end());
+    const auto [a, b] = g.edges[e];
+    const auto [ra, rb] = g.end_radius[e];
+    // Cuts of two crossing pairs that fall closer together than a tenth of a step are one.
+    const double close = 0.1 * kStep * std::min(ra, rb) / (g.points[b] - g.points[a]).norm();
+    int32_t from = a;
+    double last = 0;
+    for (double u : at) {
+      if (u - last < close) continue;
+      d.points.push_back(g.points[a] + u * (g.points[b] - g.points[a]));
+      if (!g.radius_per_edge) d.radius.push_back(ra + u * (rb - ra));
+      const int32_t point = static_cast<int32_t>(d.points.size()) - 1;
+      d.edges.push_back({from, point});
+      if (g.radius_per_edge) d.edge_radius.push_back(ra);
+      from = point, last = u;
+    }
+    d.edges.push_back({from, b});
+    if (g.radius_per_edge) d.edge_radius.push_back(ra);
+  }
+  CenterlineGraph refined = build_graph(d);
+  refined.report = g.report;
+  return refined;
+}
+
+}  // namespace
+
+std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
+                                                   double gap) {
+  const std::vector<OnBranch> on = edges_on_branches(g);
+  const std::vector<std::vector<double>> arcs = branch_arcs(g);
+  std::map<std::array<int32_t, 3>, double> extent;  // overlap_from_joint of (a, b, j), once each
+  // Whether parameter s of edge e lies within the overlap of its branch with branch b from joint j.
+  auto overlaps_from_joint = [&](int32_t e, double s, int32_t b, int32_t j) {
+    const int32_t a = on[e].branch, i = on[e].index;
+    const std::vector<double>& arc = arcs[a];
+    const double at = arc[i] + (on[e].forward ? s : 1 - s) * (arc[i + 1] - arc[i]);
+    const double from_j = g.branches[a].points.front() == j ? at : arc.back() - at;
+    auto [it, fresh] = extent.emplace(std::array<int32_t, 3>{a, b, j}, 0.0);
+    if (fresh) it->second = overlap_from_joint(g, cones, a, b, j);
+    return from_j <= it->second;
+  };
+  std::vector<std::array<int32_t, 2>> out;
+  for (const auto& [e, f] : cones.overlapping_edges(gap)) {
+    const RoundCone& k = cones.cone(e);
+    const RoundCone& l = cones.cone(f);
+    const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
+    if (near_along_graph(g, e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
+    bool from_joint = false;
+    const Branch& a = g.branches[k.branch];
+    const Branch& b = g.branches[l.branch];
+    for (int32_t j : {a.points.front(), a.points.back()})
+      if (k.branch != l.branch && (j == b.points.front() || j == b.points.back()))
+        from_joint =
+            from_joint || (overlaps_from_joint(e, s, l.branch, j) && overlaps_from_joint(f, t, k.branch, j));
+    if (!from_joint) out.push_back({e, f});
+  }
+  return out;
+}
+
+Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_cones) {
+  Separation out{g};
+  const std::vector<std::array<int32_t, 2>> in_input = crossing_edges(g, input_cones);
+  out.crossings = out.left = static_cast<int64_t>(in_input.size());
+  if (in_input.empty()) return out;
+  out.graph = with_points_where_edges_cross(g, input_cones, in_input);
+  CenterlineGraph& h = out.graph;
+  const std::vector<Vec3> start = h.points;
+  const std::vector<OnBranch> on = edges_on_branches(h);
+  std::set<std::array<int32_t, 2>> separating;  // pairs of branches (a ≤ b) whose tubes have crossed
+  for (int round = 0; round <= kRounds; ++round) {
+    const RoundCones cones(h);
+    auto branches = [&](const std::array<int32_t, 2>& ef) {
+      const int32_t a = cones.cone(ef[0]).branch, b = cones.cone(ef[1]).branch;
+      return std::array<int32_t, 2>{std::min(a, b), std::max(a, b)};
+    };
+    const std::vector<std::array<int32_t, 2>> overlapping = crossing_edges(h, cones);
+    out.left = static_cast<int64_t>(overlapping.size());
+    for (const auto& ef : overlapping) separating.insert(branches(ef));
+    // The vessels that have crossed move on until they lie the gap apart; others merely close by stay.
+    std::vector<std::array<int32_t, 2>> crossing;
+    for (const auto& ef : crossing_edges(h, cones, kGap))
+      if (separating.count(branches(ef))) crossing.push_back(ef);
+    if (crossing.empty() || round == kRounds) break;
+
+    const std::vector<std::vector<double>> arcs = branch_arcs(h);
+    std::vector<Vec3> move(h.points.size(), Vec3::Zero());
+    // Asks the points of edge e's branch round parameter s of e to move by `m`, fading over `reach`.
+    auto push = [&](int32_t e, double s, const Vec3& m, double reach) {
+      const Branch& branch = h.branches[on[e].branch];
+      const std::vector<double>& arc = arcs[on[e].branch];
+      const int32_t i = on[e].index;
+      const double at = arc[i] + (on[e].forward ? s : 1 - s) * (arc[i + 1] - arc[i]);
+      // Both of a long edge's points move, so that the edge itself does.
+      const double half = std::max(reach, 2 * std::max(at - arc[i], arc[i + 1] - at));
+      auto ask = [&](std::size_t p) {
+        const double d = std::abs(arc[p] - at);
+        if (d >= half) return false;
+        if (h.degree(branch.points[p]) > 2) return true;  // joints stay, and with them their patches
+        const Vec3 wanted = 0.5 * (1 + std::cos(M_PI * d / half)) * m;
+        Vec3& current = move[branch.points[p]];
+        if (wanted.squaredNorm() > current.squaredNorm()) current = wanted;
+        return true;
+      };
+      for (std::size_t p = i + 1; p < branch.points.size() && ask(p); ++p) {
+      }
+      for (std::size_t p = i + 1; p-- > 0 && ask(p);) {
+      }
+    };
+    for (const auto& [e, f] : crossing) {
+      const RoundCone& k = cones.cone(e);
+      const RoundCone& l = cones.cone(f);
+      const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
+      const double re = k.radius_at(s), rf = l.radius_at(t);
+      const Vec3 between = k.point_at(s) - l.point_at(t);
+      // A little past the gap that crossing_edges looks for, so that the next round finds them apart.
+      const double gap = 1.1 * kGap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
+      const double apart = between.norm(), short_by = re + rf + gap - apart;
+      if (short_by <= 0) continue;
+      // Away from f; across both axes where e's axis passes through f's.
+      Vec3 away = between / apart;
+      if (!(apart > 1e-9 * (re + rf))) {
+        away = (k.c1 - k.c0).cross(l.c1 - l.c0);
+        away = away.norm() > 0 ? Vec3(away.normalized()) : any_perpendicular(k.c1 - k.c0);
+      }
+      const double share_e = re / (re + rf);
+      push(e, s, share_e * short_by * away, kJointReach * (re + rf));
+      push(f, t, -(1 - share_e) * short_by * away, kJointReach * (re + rf));
+    }
+    for (std::size_t p = 0; p < h.points.size(); ++p) h.points[p] += move[p];
+  }
+  for (std::size_t p = 0; p < h.points.size(); ++p)
+    if (h.points[p] != start[p]) {
+      out.moved_points += 1;
+      out.largest_move = std::max(out.largest_move, (h.points[p] - start[p]).norm() / h.radius[p]);
+    }
+  return out;
+}
+
+}  // namespace vesselmesh

@@ -1,0 +1,54 @@
+#pragma once
+// separate: the input's crossing vessels moved apart before the surface is built. Where two vessels'
+// tubes overlap away from any joint the graph gives them (two vessels crossing like an X, a terminal
+// traced back along another vessel, a branch looping back through its parent), the union of the tubes
+// has a handle that the graph lacks: a closed surface of the graph's genus that follows both tubes must
+// cross itself there. Real vessels do not pass through each other; the tracing put them too close. So
+// the centerline points there move apart, each vessel by the same share of its own radius, each move
+// spread smoothly along its branch, until the two tubes lie a little apart. Tubes that overlap where
+// they leave a joint they share (a fork at a small angle, vessels that run on side by side from it) are
+// no crossing: they stay, and the fit presses the two surfaces flat against each other there.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/graph/centerline_graph.hpp"
+
+namespace vesselmesh {
+
+/// How the pipeline treats the input's crossing vessels.
+enum class Crossings {
+  separate,  ///< move them apart (separate_crossings)
+  keep,      ///< leave the centerline as it is: the surface crosses itself where they do
+};
+
+/// The pairs of edges (e < f) of `g` (whose round cones `cones` holds) whose tubes cross: they overlap,
+/// or come within `gap` of each other (RoundCones::overlapping_edges), their closest axis points lie
+/// more than kJointReach times the sum of their radii apart along the graph, and the two do not overlap
+/// all the way back to a joint their branches share.
+std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
+                                                   double gap = 0);
+
+struct Separation {
+  CenterlineGraph
+      graph;  ///< the input, its crossing vessels moved apart (with points added where they cross)
+  int64_t crossings = 0;     ///< crossing edge pairs in the input
+  int64_t moved_points = 0;  ///< points moved
+  double largest_move = 0;   ///< the largest move, relative to the moved point's radius
+  int64_t left = 0;          ///< crossing edge pairs left when the rounds ran out (0 but in a tangle)
+};
+
+/// Moves the crossing vessels of `g` (whose round cones `cones` holds) apart. First each crossing edge
+/// gets points a quarter of the two radii apart round where it crosses (the tubes stay the same), so that
+/// a coarse tracing bends there rather than shifts whole edges. Then, in rounds until no edges cross (at
+/// most 8), each crossing pair's two tubes move apart along the line between their closest axis points,
+/// each by the same share of its own radius, until they lie about a fifth of the sum of their radii apart;
+/// each move fades along its branch as a cosine over kJointReach times the sum of the radii either side. A
+/// point asked to move by several pairs in one round takes the largest move; joints stay where they are
+/// (their patches with them). The topology and the radii are kept; a graph without crossings comes back
+/// as it is.
+Separation separate_crossings(const CenterlineGraph& g, const RoundCones& cones);
+
+}  // namespace vesselmesh
