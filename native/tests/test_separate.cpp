@@ -106,6 +106,27 @@ TEST(Separate, BranchesOverlappingWhereTheyMeetAtAJointAreNoCrossing) {
   }
 }
 
+TEST(Separate, AVesselPassingCloseByAJointMovesAwayAndOnePassingATubeStays) {
+  // A bifurcation's joint patch bulges out of its tubes: a vessel passing a tenth of a radius from a
+  // child's tube 1.5 along it (within the joint's reach) moves away; one passing as close 8 along stays.
+  for (double along : {1.5, 8.0}) {
+    CenterlineData d = fixtures::bifurcation(1.0);
+    const Vec3 child = fixtures::dir(30), across(child.z(), 0, -child.x());
+    const double child_radius = 1.0 - 0.2 * along / 10;  // the child narrows from 1 to 0.8
+    const Vec3 at = along * child + (child_radius + 0.5 + 0.1) * across;
+    d.points.push_back(at - Vec3(0, 5, 0));
+    d.radius.push_back(0.5);
+    fixtures::run(d, static_cast<int32_t>(d.points.size()) - 1, at + Vec3(0, 5, 0), 20, 0.5);
+    const CenterlineGraph g = build_graph(d);
+    ASSERT_EQ(g.components, 2);
+    const Separation s = separate_crossings(g, RoundCones(g));
+    if (along < kJointReach)
+      EXPECT_GT(s.moved_points, 0);
+    else
+      EXPECT_EQ(s.moved_points, 0);
+  }
+}
+
 TEST(Separate, IsAStageOfThePipelineThatKeepLeavesOut) {
   const CenterlineGraph g = build_graph(fixtures::crossing(0.0, 1.0));
   MeshOptions o;

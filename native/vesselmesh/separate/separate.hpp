@@ -32,15 +32,15 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
                                                    double gap = 0);
 
 struct Separation {
-  CenterlineGraph
-      graph;  ///< the input, its crossing vessels moved apart (with points added where they cross)
-  int64_t crossings = 0;     ///< crossing edge pairs in the input
+  CenterlineGraph graph;     ///< the input, the vessels moved apart (with points added where they were)
+  int64_t crossings = 0;     ///< edge pairs to move apart in the input: crossing, or passing close by a joint
   int64_t moved_points = 0;  ///< points moved
   double largest_move = 0;   ///< the largest move, relative to the moved point's radius
-  int64_t left = 0;          ///< crossing edge pairs left when the rounds ran out (0 but in a tangle)
+  int64_t left = 0;          ///< such pairs left when the rounds ran out (0 but in a tangle)
 };
 
-/// Moves the crossing vessels of `g` (whose round cones `cones` holds) apart. First each crossing edge
+/// Moves the crossing vessels of `g` (whose round cones `cones` holds) apart, and those passing within the
+/// gap below of the tubes round a joint of another vessel that they do not share. First each such edge
 /// gets points a quarter of the two radii apart round where it crosses (the tubes stay the same), so that
 /// a coarse tracing bends there rather than shifts whole edges. Then, in rounds until no edges cross (at
 /// most 8), each crossing pair's two tubes move apart along the line between their closest axis points,
