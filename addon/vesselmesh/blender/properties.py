@@ -51,9 +51,10 @@ class MeshSettings:
                         description="How much sections crowd where the centerline bends")
     crossings: EnumProperty(
         name="Crossings", default="separate",
-        description="Vessels whose tubes cross away from any joint (a tracing put them too close)",
-        items=[("separate", "Separate", "Move them apart, the thinner by as much of its radius as the thicker: "
-                                        "a surface that never crosses itself"),
+        description="Vessels whose tubes cross away from any joint, or pass close by another vessel's joint "
+                    "(a tracing put them too close)",
+        items=[("separate", "Separate", "Move them apart, each by the same share of its own radius: a surface "
+                                        "that does not cross itself"),
                ("keep", "Keep", "Leave the centerline as it is: the surfaces cross where the tubes do")])
     fit: EnumProperty(
         name="Fit", default="onto", description="Bring the smooth surface onto the centerline's tubes",
