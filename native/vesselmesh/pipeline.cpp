@@ -29,11 +29,10 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   // The tubes the surface follows, built once for the separate stage and the fit, and again only where
   // the separate stage moved the centerline.
   std::optional<RoundCones> cones;
-  if (options.crossings == Crossings::separate || options.fit != Fit::none) cones.emplace(graph);
   const CenterlineGraph* centerline = &graph;
   Separation separation;
   if (options.crossings == Crossings::separate) {
-    separation = separate_crossings(graph, *cones);
+    separation = separate_crossings(graph, cones.emplace(graph));
     result.crossings = separation.crossings;
     result.separated_points = separation.moved_points;
     result.largest_separation = separation.largest_move;
@@ -70,6 +69,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
          static_cast<int64_t>(result.mesh.faces.size()));
   if (options.fit != Fit::none) {
     start = Clock::now();
+    if (!cones) cones.emplace(*centerline);
     const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
     result.fitted_vertices = fit.moved;
     result.parted_vertices = fit.parted;

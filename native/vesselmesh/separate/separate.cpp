@@ -165,6 +165,8 @@ CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const Ro
 
 std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
                                                    double gap) {
+  const std::vector<std::array<int32_t, 2>> overlapping = cones.overlapping_edges(gap);
+  if (overlapping.empty()) return {};
   const std::vector<OnBranch> on = edges_on_branches(g);
   const std::vector<std::vector<double>> arcs = branch_arcs(g);
   std::map<std::array<int32_t, 3>, double> extent;  // overlap_from_joint of (a, b, j), once each
@@ -179,7 +181,7 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
     return from_j <= it->second;
   };
   std::vector<std::array<int32_t, 2>> out;
-  for (const auto& [e, f] : cones.overlapping_edges(gap)) {
+  for (const auto& [e, f] : overlapping) {
     const RoundCone& k = cones.cone(e);
     const RoundCone& l = cones.cone(f);
     const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
