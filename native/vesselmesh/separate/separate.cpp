@@ -198,11 +198,12 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
   return out;
 }
 
-// The pairs of edges to move apart: those that cross, and those whose tubes pass within `gap` of each
-// other where one of them lies within the reach of a joint at an end of its branch and the other does
-// not: a joint's patch is the hull of its squares and bulges out of its tubes, onto a vessel passing by
+// The pairs of edges to move apart: those that cross, and those of `near` (crossing_edges within kGap)
+// where one of them lies within the reach of a joint at an end of its branch and the other does not: a
+// joint's patch is the hull of its squares and bulges out of its tubes, onto a vessel passing by
 // (records.swc, brava-bg0003's raw twin: a vessel 5 % of a radius from joint 430's tubes).
-std::vector<std::array<int32_t, 2>> to_separate(const CenterlineGraph& g, const RoundCones& cones) {
+std::vector<std::array<int32_t, 2>> to_separate(const CenterlineGraph& g, const RoundCones& cones,
+                                                const std::vector<std::array<int32_t, 2>>& near) {
   std::vector<std::array<int32_t, 2>> out = crossing_edges(g, cones);
   auto near_joint = [&](const RoundCone& k, double s) {
     const Branch& b = g.branches[k.branch];
@@ -210,7 +211,7 @@ std::vector<std::array<int32_t, 2>> to_separate(const CenterlineGraph& g, const 
       if (g.degree(j) > 2 && (g.points[j] - k.point_at(s)).norm() < kJointReach * g.radius[j]) return true;
     return false;
   };
-  for (const auto& ef : crossing_edges(g, cones, kGap)) {
+  for (const auto& ef : near) {
     const RoundCone& k = cones.cone(ef[0]);
     const RoundCone& l = cones.cone(ef[1]);
     const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
@@ -223,7 +224,8 @@ std::vector<std::array<int32_t, 2>> to_separate(const CenterlineGraph& g, const 
 
 Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_cones) {
   Separation out{g};
-  const std::vector<std::array<int32_t, 2>> in_input = to_separate(g, input_cones);
+  const std::vector<std::array<int32_t, 2>> in_input =
+      to_separate(g, input_cones, crossing_edges(g, input_cones, kGap));
   out.crossings = out.left = static_cast<int64_t>(in_input.size());
   if (in_input.empty()) return out;
   out.graph = with_points_where_edges_cross(g, input_cones, in_input);
@@ -237,12 +239,13 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
       const int32_t a = cones.cone(ef[0]).branch, b = cones.cone(ef[1]).branch;
       return std::array<int32_t, 2>{std::min(a, b), std::max(a, b)};
     };
-    const std::vector<std::array<int32_t, 2>> pairs = to_separate(h, cones);
+    const std::vector<std::array<int32_t, 2>> near = crossing_edges(h, cones, kGap);
+    const std::vector<std::array<int32_t, 2>> pairs = to_separate(h, cones, near);
     out.left = static_cast<int64_t>(pairs.size());
     for (const auto& ef : pairs) separating.insert(branches(ef));
     // The vessels that have crossed move on until they lie the gap apart; others merely close by stay.
     std::vector<std::array<int32_t, 2>> crossing;
-    for (const auto& ef : crossing_edges(h, cones, kGap))
+    for (const auto& ef : near)
       if (separating.count(branches(ef))) crossing.push_back(ef);
     if (crossing.empty() || round == kRounds) break;
 
