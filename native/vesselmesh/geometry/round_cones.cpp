@@ -45,13 +45,13 @@ std::vector<std::array<double, 2>> outside_balls(const Vec3& c0, const Vec3& c1,
 }
 
 std::vector<RoundCone> round_cones(const CenterlineGraph& g) {
-  std::vector<int32_t> branch_of(g.edges.size(), -1);
-  for (std::size_t b = 0; b < g.branches.size(); ++b)
-    for (int32_t e : g.branches[b].edges) branch_of[e] = static_cast<int32_t>(b);
   std::vector<RoundCone> cones(g.edges.size());
-  for (std::size_t e = 0; e < g.edges.size(); ++e)
-    cones[e] = {g.points[g.edges[e][0]], g.points[g.edges[e][1]], g.end_radius[e][0], g.end_radius[e][1],
-                branch_of[e]};
+  for (std::size_t b = 0; b < g.branches.size(); ++b)
+    for (std::size_t i = 0; i < g.branches[b].edges.size(); ++i) {
+      const int32_t e = g.branches[b].edges[i];
+      cones[e] = {g.points[g.edges[e][0]], g.points[g.edges[e][1]], g.end_radius[e][0],
+                  g.end_radius[e][1],      static_cast<int32_t>(b), static_cast<int32_t>(i)};
+    }
   return cones;
 }
 
@@ -258,7 +258,7 @@ bool RoundCones::folds_onto(int32_t e, int32_t f, double margin) const {
   if (e == f) return false;
   const Branch& b = graph_.branches[cones_[e].branch];
   const bool ring = b.points.front() == b.points.back();
-  const double length = std::max(arc_[b.edges.back()][0], arc_[b.edges.back()][1]);  // the branch's
+  const double length = branch_length(cones_[e].branch);
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   // Edges whose points all lie within the smallest reach of each other along the branch only turn
@@ -276,8 +276,7 @@ bool RoundCones::folds_onto(int32_t e, int32_t f, double margin) const {
       const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
       const double rs = k.radius_at(s), rt = l.radius_at(t);
       if ((k.point_at(s) - l.point_at(t)).norm() >= rs + rt + margin) continue;
-      const double apart =
-          std::abs(arc_[e][0] + s * (arc_[e][1] - arc_[e][0]) - arc_[f][0] - t * (arc_[f][1] - arc_[f][0]));
+      const double apart = std::abs(arc_at(e, s) - arc_at(f, t));
       if (std::min(apart, ring ? length - apart : apart) > kJointReach * (rs + rt)) return true;
     }
   return false;

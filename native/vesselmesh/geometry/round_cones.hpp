@@ -4,6 +4,7 @@
 // vessel the file describes, but for its ends, where the surface is capped instead: the fit stage brings
 // the surface onto it, and the checker measures radius fidelity against it, both away from the caps.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,7 +22,8 @@ constexpr double kJointReach = 3.0;
 struct RoundCone {
   Vec3 c0, c1;
   double r0, r1;
-  int32_t branch;
+  int32_t branch;  ///< the cone is edges[index] of branches[branch]
+  int32_t index = 0;
   double radius_at(double s) const { return r0 + s * (r1 - r0); }
   Vec3 point_at(double s) const { return c0 + s * (c1 - c0); }
 };
@@ -92,6 +94,19 @@ class RoundCones {
 
   const RoundCone& cone(int32_t e) const { return cones_[e]; }
   std::size_t size() const { return cones_.size(); }
+
+  /// Arc length along cone `e`'s branch, from the branch's first point, at parameter `s` of the cone (0 at
+  /// c0, 1 at c1).
+  double arc_at(int32_t e, double s) const { return arc_[e][0] + s * (arc_[e][1] - arc_[e][0]); }
+  /// Arc length at point `i` of branch `b` (branches[b].points[i]).
+  double arc_at_point(int32_t b, int32_t i) const {
+    const std::vector<int32_t>& edges = graph_.branches[b].edges;
+    return i == 0 ? 0.0 : std::max(arc_[edges[i - 1]][0], arc_[edges[i - 1]][1]);
+  }
+  /// The length of branch `b`'s axis.
+  double branch_length(int32_t b) const {
+    return arc_at_point(b, static_cast<int32_t>(graph_.branches[b].edges.size()));
+  }
 
   /// True when cone `e`'s tube comes within half a radius of a tube of another branch, away from the
   /// joints the two share: only near such a cone can a point on its surface lie in another vessel's tube

@@ -20,35 +20,6 @@ constexpr double kGap = 0.2;  // separated tubes lie this fraction of the sum of
 constexpr int kRounds = 8;
 constexpr double kStep = 0.25;  // points added along a crossing edge lie this fraction of the radii apart
 
-// Where an edge lies on its branch: edges[index] of branches[branch], walked from points[index] when
-// `forward`, else from points[index + 1].
-struct OnBranch {
-  int32_t branch = -1, index = 0;
-  bool forward = true;
-};
-
-std::vector<OnBranch> edges_on_branches(const CenterlineGraph& g) {
-  std::vector<OnBranch> out(g.edges.size());
-  for (std::size_t b = 0; b < g.branches.size(); ++b)
-    for (std::size_t i = 0; i < g.branches[b].edges.size(); ++i) {
-      const int32_t e = g.branches[b].edges[i];
-      out[e] = {static_cast<int32_t>(b), static_cast<int32_t>(i), g.edges[e][0] == g.branches[b].points[i]};
-    }
-  return out;
-}
-
-// Per branch, the arc length at each of its points.
-std::vector<std::vector<double>> branch_arcs(const CenterlineGraph& g) {
-  std::vector<std::vector<double>> arcs(g.branches.size());
-  for (std::size_t b = 0; b < g.branches.size(); ++b) {
-    const std::vector<int32_t>& points = g.branches[b].points;
-    arcs[b].assign(points.size(), 0.0);
-    for (std::size_t i = 1; i < points.size(); ++i)
-      arcs[b][i] = arcs[b][i - 1] + (g.points[points[i]] - g.points[points[i - 1]]).norm();
-  }
-  return arcs;
-}
-
 // Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
 // `limit` (a Dijkstra search that goes no further than that).
 bool near_along_graph(const CenterlineGraph& g, int32_t e, double s, int32_t f, double t, double limit) {
@@ -167,15 +138,12 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
                                                    double gap) {
   const std::vector<std::array<int32_t, 2>> overlapping = cones.overlapping_edges(gap);
   if (overlapping.empty()) return {};
-  const std::vector<OnBranch> on = edges_on_branches(g);
-  const std::vector<std::vector<double>> arcs = branch_arcs(g);
   std::map<std::array<int32_t, 3>, double> extent;  // overlap_from_joint of (a, b, j), once each
   // Whether parameter s of edge e lies within the overlap of its branch with branch b from joint j.
   auto overlaps_from_joint = [&](int32_t e, double s, int32_t b, int32_t j) {
-    const int32_t a = on[e].branch, i = on[e].index;
-    const std::vector<double>& arc = arcs[a];
-    const double at = arc[i] + (on[e].forward ? s : 1 - s) * (arc[i + 1] - arc[i]);
-    const double from_j = g.branches[a].points.front() == j ? at : arc.back() - at;
+    const int32_t a = cones.cone(e).branch;
+    const double at = cones.arc_at(e, s);
+    const double from_j = g.branches[a].points.front() == j ? at : cones.branch_length(a) - at;
     auto [it, fresh] = extent.emplace(std::array<int32_t, 3>{a, b, j}, 0.0);
     if (fresh) it->second = overlap_from_joint(g, cones, a, b, j);
     return from_j <= it->second;
@@ -231,7 +199,6 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
   out.graph = with_points_where_edges_cross(g, input_cones, in_input);
   CenterlineGraph& h = out.graph;
   const std::vector<Vec3> start = h.points;
-  const std::vector<OnBranch> on = edges_on_branches(h);
   std::set<std::array<int32_t, 2>> separating;  // pairs of branches (a ≤ b) to move apart
   for (int round = 0; round <= kRounds; ++round) {
     const RoundCones cones(h);
@@ -249,18 +216,17 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
       if (separating.count(branches(ef))) crossing.push_back(ef);
     if (crossing.empty() || round == kRounds) break;
 
-    const std::vector<std::vector<double>> arcs = branch_arcs(h);
     std::vector<Vec3> move(h.points.size(), Vec3::Zero());
     // Asks the points of edge e's branch round parameter s of e to move by `m`, fading over `reach`.
     auto push = [&](int32_t e, double s, const Vec3& m, double reach) {
-      const Branch& branch = h.branches[on[e].branch];
-      const std::vector<double>& arc = arcs[on[e].branch];
-      const int32_t i = on[e].index;
-      const double at = arc[i] + (on[e].forward ? s : 1 - s) * (arc[i + 1] - arc[i]);
+      const int32_t b = cones.cone(e).branch, i = cones.cone(e).index;
+      const Branch& branch = h.branches[b];
+      auto arc = [&](std::size_t p) { return cones.arc_at_point(b, static_cast<int32_t>(p)); };
+      const double at = cones.arc_at(e, s);
       // Both of a long edge's points move, so that the edge itself does.
-      const double half = std::max(reach, 2 * std::max(at - arc[i], arc[i + 1] - at));
+      const double half = std::max(reach, 2 * std::max(at - arc(i), arc(i + 1) - at));
       auto ask = [&](std::size_t p) {
-        const double d = std::abs(arc[p] - at);
+        const double d = std::abs(arc(p) - at);
         if (d >= half) return false;
         if (h.degree(branch.points[p]) > 2) return true;  // joints stay, and with them their patches
         const Vec3 wanted = 0.5 * (1 + std::cos(M_PI * d / half)) * m;
