@@ -559,6 +559,20 @@ TEST(TubeOverlaps, AreWhereTheInputTubesOverlapAwayFromTheirJointsAtEveryScale) 
   }
 }
 
+TEST(TubeOverlaps, TubesTracedExactlyTouchingCountWhereverTheDataSetLies) {
+  // Two vessels crossing with their axes exactly the sum of their radii apart, in decimal coordinates as
+  // a file gives them: whether they touch must not depend on how the position of the data set rounds.
+  for (double s : kScales)
+    for (double offset : {0.0, 0.1, 1e3, 12345.678, 1e6}) {
+      const Vec3 o = Vec3::Constant(offset * s);
+      const std::vector<TubeOverlap> touching =
+          tube_overlaps(straight_runs({{o + Vec3(-5, 0.1, 0.3) * s, o + Vec3(5, 0.1, 0.3) * s},
+                                       {o + Vec3(0.2, -5, 1.0) * s, o + Vec3(0.2, 5, 1.0) * s}},
+                                      0.35 * s, 1));
+      EXPECT_EQ(touching.size(), 1u) << "scale " << s << ", offset " << offset;
+    }
+}
+
 // --- quality ----------------------------------------------------------------------------------------
 
 TEST(TriangleQuality, EquilateralTriangleHasRadiusRatioTwoAndAnglesOfSixtyDegrees) {

@@ -17,6 +17,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNearTube = 1.5;    // a point is near a centerline edge within this many local radii
 constexpr double kCrowd = 0.5;       // radii between two tubes that count as crowding each other
+// Tubes within this fraction of their radii of touching count as touching: where a tracing has two
+// vessels exactly touching, rounding (of where the data set lies, say) must not decide whether they do.
+constexpr double kTouch = 1e-9;
 
 struct Ball {
   Vec3 centre;
@@ -61,11 +64,12 @@ std::vector<Box> boxes(const std::vector<RoundCone>& cones, double reach) {
   std::vector<Box> out(cones.size());
   for (std::size_t e = 0; e < cones.size(); ++e) {
     const RoundCone& k = cones[e];
-    const double r = reach * std::max(k.r0, k.r1);
-    out[e].extend(k.c0 - Vec3::Constant(std::max(k.r0, r)));
-    out[e].extend(k.c0 + Vec3::Constant(std::max(k.r0, r)));
-    out[e].extend(k.c1 - Vec3::Constant(std::max(k.r1, r)));
-    out[e].extend(k.c1 + Vec3::Constant(std::max(k.r1, r)));
+    const double r = reach * std::max(k.r0, k.r1), r0 = (1 + kTouch) * std::max(k.r0, r),
+                 r1 = (1 + kTouch) * std::max(k.r1, r);
+    out[e].extend(k.c0 - Vec3::Constant(r0));
+    out[e].extend(k.c0 + Vec3::Constant(r0));
+    out[e].extend(k.c1 - Vec3::Constant(r1));
+    out[e].extend(k.c1 + Vec3::Constant(r1));
   }
   return out;
 }
@@ -275,7 +279,7 @@ bool RoundCones::folds_onto(int32_t e, int32_t f, double margin) const {
       const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
       const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
       const double rs = k.radius_at(s), rt = l.radius_at(t);
-      if ((k.point_at(s) - l.point_at(t)).norm() >= rs + rt + margin) continue;
+      if ((k.point_at(s) - l.point_at(t)).norm() >= (1 + kTouch) * (rs + rt) + margin) continue;
       const double apart = std::abs(arc_at(e, s) - arc_at(f, t));
       if (std::min(apart, ring ? length - apart : apart) > kJointReach * (rs + rt)) return true;
     }
@@ -308,7 +312,8 @@ bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
     for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
       const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
       const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
-      if ((k.point_at(s) - l.point_at(t)).norm() < k.radius_at(s) + l.radius_at(t) + margin) return true;
+      if ((k.point_at(s) - l.point_at(t)).norm() < (1 + kTouch) * (k.radius_at(s) + l.radius_at(t)) + margin)
+        return true;
     }
   return false;
 }
