@@ -192,6 +192,21 @@ inline CenterlineData zigzag(double turn, double spacing, double scale) {
   }
   return d;
 }
+/// A voxel centerline, as skeletonising a segmented volume gives one: a straight vessel of radius 1, 30
+/// radii long, running obliquely through a grid of `voxel` radii, its points the voxels it passes
+/// through (a staircase turning at nearly every point).
+inline CenterlineData staircase(double voxel, double scale) {
+  const Vec3 direction = Vec3(3, 2, 1.5).normalized();
+  CenterlineData d = start(Vec3::Zero(), scale);
+  for (int i = 1; i <= 3000; ++i) {
+    const Vec3 on_grid = (0.01 * i * direction / voxel).array().round().matrix() * voxel * scale;
+    if (on_grid == d.points.back()) continue;
+    d.points.push_back(on_grid);
+    d.radius.push_back(scale);
+    d.edges.push_back({static_cast<int32_t>(d.points.size()) - 2, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
 /// A straight tube of radius r and length `length` radii with points every 0.5 radius.
 inline CenterlineData straight(double length_radii, double scale) {
   CenterlineData d = start(Vec3::Zero(), scale);

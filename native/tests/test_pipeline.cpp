@@ -8,6 +8,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/sample/sample.hpp"
 #include "vesselmesh/synth/synth.hpp"
 
 using namespace vesselmesh;
@@ -169,6 +170,22 @@ TEST(Pipeline, SharpCornersOfACoarseZigzagTakeASection) {
     EXPECT_LT(f.abs_relative_error.median, 0.04) << "scale " << scale;  // 0.050 with no section on the corners
     EXPECT_LT(f.abs_relative_error.p95, 0.15) << "scale " << scale;     // 0.218 with none
     EXPECT_EQ(find_self_intersections(r.mesh, &g).pairs, 0) << "scale " << scale;
+  }
+}
+
+TEST(Pipeline, StaircaseOfAVoxelCenterlineTakesNoSectionOnItsCorners) {
+  // Every point of the staircase turns by 45° or more, but stands out of the vessel's line by half a
+  // voxel at most: sections snapped onto those points would zigzag.
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::staircase(0.5, scale));
+    ASSERT_EQ(g.branches.size(), 1u);
+    const BranchCurve curve = branch_curve(g, g.branches[0]);
+    const std::vector<double> arcs = sample_branch(curve, 0, curve.length(), SamplingOptions{});
+    int on_points = 0;
+    for (std::size_t i = 1; i + 1 < arcs.size(); ++i)
+      on_points += std::binary_search(curve.arc.begin(), curve.arc.end(), arcs[i]);
+    EXPECT_EQ(on_points, 0) << "scale " << scale;
+    EXPECT_EQ(find_self_intersections(mesh_at(g, 2).mesh, &g).pairs, 0) << "scale " << scale;
   }
 }
 

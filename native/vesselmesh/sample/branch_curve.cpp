@@ -69,12 +69,14 @@ double resampling_step(const BranchCurve& c) {
 }
 
 /// Curvature and unit tangent at each point: the resampled curve convolved with Gaussian derivative
-/// kernels, κ = |X' × X''| / |X'|³. At least one mean edge wide: between sparse points the curve is
-/// unknown, and a polyline's corners are not bends of the vessel.
+/// kernels, κ = |X' × X''| / |X'|³. At least a radius wide: a tube shows nothing of its centerline finer
+/// than its radius, and at half a radius the staircase of a voxel centerline (points half a radius apart)
+/// still reads as bends of radius r, crowding sections every half radius. At least one mean edge wide:
+/// between sparse points the curve is unknown, and a polyline's corners are not bends of the vessel.
 void smoothed_differentials(BranchCurve& c, bool ring) {
   const double step = resampling_step(c);
   const double mean_edge = c.length() / static_cast<double>(c.points.size() - 1);
-  const double sigma = std::max({0.5 * c.median_radius, 2.0 * step, mean_edge});
+  const double sigma = std::max({c.median_radius, 2.0 * step, mean_edge});
   const Resampled r = resample(c, ring, step, 4.0 * sigma);
   const int half = r.half;
   const double h = r.h;

@@ -31,9 +31,10 @@ struct BranchCurve {
   std::pair<std::size_t, double> locate(double s) const;
 };
 
-/// The branch's curve with its curvature and tangents: scale-space curvature of the curve smoothed by a Gaussian
-/// of width max(0.5 × median radius, 2 × resampling step, mean edge length), so neither staircase noise
-/// of voxel centerlines nor the corners of sparsely sampled polylines read as bends. Ends are extended by point reflection (curvature → 0 at a free end).
+/// The branch's curve with its curvature and tangents: scale-space curvature of the curve smoothed by a
+/// Gaussian of width max(median radius, 2 × resampling step, mean edge length), so neither staircase noise of
+/// voxel centerlines nor the corners of sparsely sampled polylines read as bends. Ends are extended by point
+/// reflection (curvature → 0 at a free end).
 BranchCurve branch_curve(const CenterlineGraph& graph, const Branch& branch);
 
 }  // namespace vesselmesh

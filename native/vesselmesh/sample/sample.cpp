@@ -12,6 +12,11 @@ namespace {
 // and made the tubes of smooth ones (human-brain-arteries) less even.
 constexpr double kCornerDegrees = 30;
 const double kCornerCosine = std::cos(kCornerDegrees * M_PI / 180);
+// Such a corner takes a section only where it stands out a radius or more from the line between the
+// points a diameter either side (its sphere stands out of a tube swept past it as far): the staircase of
+// a voxel centerline turns at every point but stands out half a voxel, and sections snapped onto it zigzag.
+constexpr double kCornerView = 2;  // radii along the polyline either side
+constexpr double kCornerOut = 1;   // radii from the line between those points
 
 struct Spacing {
   const BranchCurve& curve;
@@ -98,7 +103,8 @@ std::vector<double> bidirectional(const Spacing& sp, double start, double end, d
   return left;
 }
 
-/// Moves sections onto the polyline's corners that turn by more than kCornerDegrees, sharpest first,
+/// Moves sections onto the polyline's corners that turn by more than kCornerDegrees and stand out
+/// kCornerOut radii from the line between the points kCornerView radii either side, sharpest first,
 /// each onto the nearest section not moved yet, where both of its gaps stay at least meet_min_ratio of
 /// their desired length. Sections a diameter apart cut such a corner, where the input's round cones
 /// have a whole sphere: a section on the corner keeps the tube out to it (a 60° zigzag of points four
@@ -110,7 +116,17 @@ void snap_to_corners(const Spacing& sp, std::vector<double>& arcs, double meet_m
     if (c.arc[j] <= arcs.front() || c.arc[j] >= arcs.back()) continue;
     const Vec3 in = c.points[j] - c.points[j - 1], out = c.points[j + 1] - c.points[j];
     const double cosine = in.dot(out) / (in.norm() * out.norm());
-    if (cosine < kCornerCosine) corners.emplace_back(cosine, j);
+    if (cosine >= kCornerCosine) continue;
+    const double view = kCornerView * c.radius[j];
+    std::size_t i = j - 1, k = j + 1;
+    while (i > 0 && c.arc[j] - c.arc[i] < view) --i;
+    while (k + 1 < c.points.size() && c.arc[k] - c.arc[j] < view) ++k;
+    const Vec3 chord = c.points[k] - c.points[i];
+    const double t = chord.squaredNorm() > 0
+                         ? std::clamp((c.points[j] - c.points[i]).dot(chord) / chord.squaredNorm(), 0.0, 1.0)
+                         : 0.0;
+    if ((c.points[i] + t * chord - c.points[j]).norm() >= kCornerOut * c.radius[j])
+      corners.emplace_back(cosine, j);
   }
   std::sort(corners.begin(), corners.end());
   std::vector<char> snapped(arcs.size(), 0);

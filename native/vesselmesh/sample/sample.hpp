@@ -4,7 +4,8 @@
 // so that sections crowd where the vessel is thin or bends. Bidirectional sampling (the default)
 // runs two fronts from both ends towards the middle, so the irregular gap falls mid-branch instead of
 // next to a joint, where a short last gap would pinch the tube. Then the sharp corners of a coarse
-// polyline (over 30°) each take the nearest section, so that the tube does not cut them.
+// polyline (over 30°, standing out a radius) each take the nearest section, so that the tube does not cut
+// them.
 
 #include <vector>
 
