@@ -39,13 +39,15 @@ std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vec
   using Key = std::array<int64_t, 3>;
   struct KeyHash {
     std::size_t operator()(const Key& k) const {
-      return std::hash<int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
+      // Unsigned: cells of a data set lying far from the origin, in radii, overflow a signed product.
+      return std::hash<uint64_t>()(uint64_t(k[0]) * 73856093u ^ uint64_t(k[1]) * 19349663u ^
+                                   uint64_t(k[2]) * 83492791u);
     }
   };
-  auto key_of = [&](const Vec3& q) {
-    return Key{static_cast<int64_t>(std::floor(q.x())), static_cast<int64_t>(std::floor(q.y())),
-               static_cast<int64_t>(std::floor(q.z()))};
-  };
+  // Clamped to where int64 holds them: cells so far out only share keys, and partners are checked by
+  // distance anyway.
+  auto cell_of = [](double x) { return static_cast<int64_t>(std::clamp(std::floor(x), -4e18, 4e18)); };
+  auto key_of = [&](const Vec3& q) { return Key{cell_of(q.x()), cell_of(q.y()), cell_of(q.z())}; };
   std::vector<Vec3> scaled(n);
   std::vector<std::pair<Key, int32_t>> sorted(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -60,9 +62,8 @@ std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vec
   for (std::size_t i = 0; i < n; ++i) {
     Key base, step;
     for (int a = 0; a < 3; ++a) {
-      const double f = std::floor(scaled[i][a]);
-      base[a] = static_cast<int64_t>(f);
-      step[a] = scaled[i][a] - f < 0.5 ? -1 : 1;
+      base[a] = cell_of(scaled[i][a]);
+      step[a] = scaled[i][a] - std::floor(scaled[i][a]) < 0.5 ? -1 : 1;
     }
     for (int corner = 0; corner < 8; ++corner) {
       const Key k{base[0] + (corner & 1 ? step[0] : 0), base[1] + (corner & 2 ? step[1] : 0),
