@@ -168,6 +168,14 @@ int main(int argc, char** argv) {
   mesh->add_flag("--curvature", mesh_options.curvature,
                  "estimate per-vertex curvature (2-ring fit); PLY gets k1, k2, mean, gaussian, rms");
   mesh->add_option("--radius-array", radius_array, "name of the array or column holding the radius");
+  mesh->add_option("--max-triangles", mesh_options.max_triangles,
+                   "refuse, before the work, a surface with more triangles than this")
+      ->check(CLI::Range(int64_t{1}, std::numeric_limits<int64_t>::max()));
+  mesh->add_option(
+          "--verify", mesh_options.verify,
+          "check the surface before reporting success: closed manifold, and crossings up to a million "
+          "triangles (auto), whatever its size (full), or never (topology)")
+      ->transform(CLI::CheckedTransformer(verify_names()));
 
   std::string check_in, check_centerline;
   CLI::App* check = app.add_subcommand("check", "Check a surface: closed, manifold, intersections, quality");
@@ -198,12 +206,29 @@ int main(int argc, char** argv) {
       const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options));
       const MeshResult result = mesh_centerline(graph, mesh_options);
       write_mesh(result.mesh, mesh_out);
+      const Verification& v = result.verification;
       std::cerr << "wrote " << mesh_out << ": " << result.mesh.vertices.size() << " vertices, "
-                << result.mesh.faces.size() << " triangles\n";
+                << result.mesh.faces.size() << " triangles";
+      if (v.problem().empty())
+        std::cerr << "; checked: a closed manifold of genus " << v.topology.genus << ", "
+                  << (!v.crossings_checked    ? "crossings not checked above a million triangles "
+                                                "(--verify full, or vesselmesh check)"
+                      : v.crossing_pairs == 0 ? "crossing itself nowhere"
+                                              : "crossing itself only where the input's tubes overlap (" +
+                                                    std::to_string(v.crossing_pairs) + " triangle pairs)");
+      std::cerr << "\n";
+      if (v.problem().empty() && v.topology.genus != v.loops)
+        std::cerr << "note: the centerline has " << v.loops << " loops and the surface genus "
+                  << v.topology.genus << " (docs/pipeline.md, tile: where a loop closes)\n";
       if (!stats_file.empty()) {
         std::ofstream out(stats_file);
         out << stats_json(result) << "\n";
         if (!out) throw std::runtime_error("cannot write " + stats_file);
+      }
+      if (!v.problem().empty()) {
+        std::cerr << "error: the surface written to " << mesh_out << " fails its check: " << v.problem()
+                  << " (where: vesselmesh check " << mesh_out << " --centerline " << mesh_in << ")\n";
+        return 2;
       }
     } else if (*check) {
       const TriMesh surface = read_mesh(check_in);

@@ -79,8 +79,22 @@ using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
 using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-CenterlineData data_from_arrays(const Points& points, const Indices& edges, const std::optional<Values>& radius,
-                                const std::optional<Values>& edge_radius, const std::optional<Indices>& roots) {
+/// `array` as int64 indices when it holds integers (any integer dtype, a list of ints, or nothing);
+/// InputError naming `what` otherwise, rather than truncating floats or reading booleans as indices.
+Indices integer_array(const py::object& array, const char* what, const char* of) {
+  const py::array a = py::array::ensure(array);
+  const std::string must = std::string(what) + " must hold integer " + of + " indices";
+  if (!a) throw InputError("arrays", "", must);
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u' && a.size() > 0)
+    throw InputError("arrays", "", must + ", not " + py::str(a.dtype()).cast<std::string>());
+  return Indices::ensure(a);
+}
+
+CenterlineData data_from_arrays(const Points& points, const py::object& edge_array,
+                                const std::optional<Values>& radius, const std::optional<Values>& edge_radius,
+                                const std::optional<py::object>& root_array) {
+  const Indices edges = integer_array(edge_array, "edges", "point");
   if (points.ndim() != 2 || points.shape(1) != 3) throw InputError("arrays", "", "points must have shape (N, 3)");
   if (edges.ndim() != 2 || edges.shape(1) != 2) throw InputError("arrays", "", "edges must have shape (E, 2)");
   CenterlineData d;
@@ -100,8 +114,17 @@ CenterlineData data_from_arrays(const Points& points, const Indices& edges, cons
   };
   if (radius) d.radius = vector_of(*radius, "radius");
   if (edge_radius) d.edge_radius = vector_of(*edge_radius, "edge_radius");
-  if (roots)
-    for (py::ssize_t i = 0; i < roots->size(); ++i) d.roots.push_back(static_cast<int32_t>(roots->data()[i]));
+  if (root_array) {
+    const Indices roots = integer_array(*root_array, "roots", "point");
+    for (py::ssize_t i = 0; i < roots.size(); ++i) {
+      const int64_t r = roots.data()[i];
+      if (r < 0 || r >= static_cast<int64_t>(d.points.size()))
+        throw InputError("arrays", "",
+                         "root index " + std::to_string(r) + " is outside 0.." +
+                             std::to_string(static_cast<int64_t>(d.points.size()) - 1));
+      d.roots.push_back(static_cast<int32_t>(r));
+    }
+  }
   validate(d, "arrays");
   return d;
 }
@@ -128,7 +151,8 @@ std::vector<Tri> faces_from(const py::object& array, py::ssize_t vertex_count) {
     return out;
   };
   using Int32 = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
-  return py::isinstance<py::array_t<int32_t>>(array) ? convert(Int32::ensure(array)) : convert(Indices::ensure(array));
+  return py::isinstance<py::array_t<int32_t>>(array) ? convert(Int32::ensure(array))
+                                                     : convert(integer_array(array, "faces", "vertex"));
 }
 
 TriMesh mesh_from_arrays(const Points& vertices, const py::object& faces) {
@@ -145,6 +169,7 @@ TriMesh mesh_from_arrays(const Points& vertices, const py::object& faces) {
 PYBIND11_MODULE(vesselmesh_core, m) {
   m.doc() = "VesselMesh core: centerline readers, graph, and (later stages) surface meshing.";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<SizeLimitError>(m, "SizeLimitError", PyExc_RuntimeError);
 
   m.def(
       "read",
@@ -195,8 +220,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   py::class_<CenterlineGraph>(m, "Graph",
                               "The normalised centerline graph (coincident points merged, zero-length and\n"
                               "duplicate edges dropped) with its topology.")
-      .def(py::init([](const Points& points, const Indices& edges, std::optional<Values> radius,
-                       std::optional<Values> edge_radius, std::optional<Indices> roots) {
+      .def(py::init([](const Points& points, const py::object& edges, std::optional<Values> radius,
+                       std::optional<Values> edge_radius, std::optional<py::object> roots) {
              return build_graph(data_from_arrays(points, edges, radius, edge_radius, roots));
            }),
            py::arg("points"), py::arg("edges"), py::kw_only(), py::arg("radius") = py::none(),
@@ -236,8 +261,10 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
          const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
          double threshold, const std::string& measure, double angle, const std::string& crossings,
-         const std::string& fit) {
+         const std::string& fit, int64_t max_triangles, const std::string& verify) {
         MeshOptions o;
+        o.max_triangles = max_triangles;
+        o.verify = choice("verify", verify, verify_names());
         o.crossings = choice("crossings", crossings, crossings_names());
         o.fit = choice("fit", fit, fit_names());
         o.subdivision.levels = levels;
@@ -269,7 +296,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
       py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("crossings") = "separate",
-      py::arg("fit") = "onto",
+      py::arg("fit") = "onto", py::arg("max_triangles") = MeshOptions().max_triangles,
+      py::arg("verify") = "auto",
       "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 "
       "(counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
@@ -279,7 +307,11 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
       "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
       "crossings: vessels whose tubes cross away from a joint, 'separate' (moved apart) or 'keep'.\n"
-      "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.");
+      "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.\n"
+      "Raises SizeLimitError (a RuntimeError), before the work, for a surface over max_triangles, and\n"
+      "ValueError for options out of range. stats['verified'] is the surface's own check ('auto': closed\n"
+      "manifold, and crossings up to a million triangles; 'full'; 'topology'): its 'problem' is empty when\n"
+      "the surface passes, else says what is wrong.");
 
   m.def(
       "check",

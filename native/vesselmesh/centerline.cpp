@@ -1,5 +1,6 @@
 #include "vesselmesh/centerline.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "vesselmesh/error.hpp"
@@ -10,13 +11,64 @@ namespace {
 
 std::string element(const char* kind, std::size_t i) { return std::string(kind) + " " + std::to_string(i); }
 
+std::string position(const Vec3& p) {
+  return "(" + number_text(p.x()) + ", " + number_text(p.y()) + ", " + number_text(p.z()) + ")";
+}
+
 void check_radii(const std::vector<double>& radii, const char* kind, const std::string& source) {
   for (std::size_t i = 0; i < radii.size(); ++i) {
     if (!std::isfinite(radii[i])) throw InputError(source, element(kind, i), "radius is not a finite number");
     if (radii[i] <= 0.0)
+      throw InputError(source, element(kind, i), "radius " + number_text(radii[i]) + " is not positive");
+    if (radii[i] > kMaxCoordinate)
       throw InputError(source, element(kind, i),
-                       "radius " + std::to_string(radii[i]) + " is not positive");
+                       "radius " + number_text(radii[i]) + " is beyond " + number_text(kMaxCoordinate));
   }
+}
+
+/// The limits of kMaxCoordinate, kMinRadiusOfSize and kMaxLengthOverRadius, on data whose indices and
+/// radii are otherwise valid.
+void check_scale(const CenterlineData& data, const std::string& source) {
+  const bool per_point = !data.radius.empty();
+  Vec3 lo = data.points[0], hi = data.points[0];
+  double farthest = 0;
+  for (std::size_t i = 0; i < data.points.size(); ++i) {
+    const Vec3& p = data.points[i];
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      throw InputError(source, element("point", i),
+                       "coordinate beyond ±" + number_text(kMaxCoordinate) + " at " + position(p));
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    farthest = std::max(farthest, p.norm());
+  }
+  const double size = std::max((hi - lo).norm(), farthest);
+  auto too_thin = [&](double r) { return r < kMinRadiusOfSize * size; };
+  auto thin_message = [&](double r) {
+    return "radius " + number_text(r) + " is below " + number_text(kMinRadiusOfSize) +
+           " of the data set's size " + number_text(size) +
+           " (its extent or its distance from the origin): too thin to mesh at this scale";
+  };
+  for (std::size_t i = 0; i < data.radius.size(); ++i)
+    if (too_thin(data.radius[i])) throw InputError(source, element("point", i), thin_message(data.radius[i]));
+  for (std::size_t e = 0; e < data.edge_radius.size(); ++e)
+    if (too_thin(data.edge_radius[e]))
+      throw InputError(source, element("edge", e), thin_message(data.edge_radius[e]));
+
+  bool any_length = false;
+  for (std::size_t e = 0; e < data.edges.size(); ++e) {
+    const auto [a, b] = data.edges[e];
+    const double length = (data.points[b] - data.points[a]).norm();
+    const double r = per_point ? std::min(data.radius[a], data.radius[b]) : data.edge_radius[e];
+    any_length = any_length || length > 0;
+    if (length > kMaxLengthOverRadius * r)
+      throw InputError(source, element("edge", e),
+                       "from point " + std::to_string(a) + " to point " + std::to_string(b) + ", " +
+                           number_text(length) + " long, is " + number_text(length / r) +
+                           " times its radius " + number_text(r) + ", beyond the " +
+                           number_text(kMaxLengthOverRadius) +
+                           " that can be meshed (are the radii in the unit of the coordinates?)");
+  }
+  if (!any_length)
+    throw InputError(source, "", "every edge joins two points at the same place: nothing to mesh");
 }
 
 }  // namespace
@@ -49,6 +101,7 @@ void validate(const CenterlineData& data, const std::string& source) {
   for (int32_t r : data.roots)
     if (r < 0 || static_cast<std::size_t>(r) >= n)
       throw InputError(source, "", "root index " + std::to_string(r) + " is outside 0.." + std::to_string(n - 1));
+  check_scale(data, source);
 }
 
 }  // namespace vesselmesh

@@ -21,9 +21,21 @@ struct CenterlineData {
   std::vector<int32_t> roots;       ///< points the file marks as roots (SWC parent -1); may be empty
 };
 
+/// Limits on what can be meshed, so that every later stage's arithmetic stays finite and its work stays
+/// bounded by the surface it makes rather than by numbers in the file.
+/// Coordinates and radii at most this large in magnitude: their squares and products stay finite.
+constexpr double kMaxCoordinate = 1e150;
+/// Radii at least this fraction of the data set's size (the larger of its extent and its distance from
+/// the origin): a tube thinner than that is lost in the rounding of its own coordinates.
+constexpr double kMinRadiusOfSize = 1e-12;
+/// Edges at most this many times as long as the smaller radius at their ends: sections go about a
+/// diameter apart, so longer tubes are beyond any surface that fits in memory.
+constexpr double kMaxLengthOverRadius = 1e7;
+
 /// Throws InputError naming `source` and the first offending element unless `data` is a usable
-/// centerline: at least one edge, finite coordinates, radii finite and positive, given either per
-/// point (N values) or per edge (E values) but not both, edge and root indices in range.
+/// centerline: at least one edge of non-zero length, finite coordinates, radii finite and positive,
+/// given either per point (N values) or per edge (E values) but not both, edge and root indices in
+/// range, and coordinates, radii and edge lengths within the limits above.
 void validate(const CenterlineData& data, const std::string& source);
 
 }  // namespace vesselmesh

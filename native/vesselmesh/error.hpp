@@ -14,6 +14,16 @@ class InputError : public std::runtime_error {
   InputError(const std::string& file, const std::string& where, const std::string& what);
 };
 
+/// A surface that would be larger than the limit the caller set (MeshOptions::max_triangles): thrown
+/// before the work, with a message that says what to change.
+class SizeLimitError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// `x` as a message shows it: up to six significant digits, exponent only where needed (1e-300, 0.25).
+std::string number_text(double x);
+
 inline std::string at_line(std::size_t line) { return "line " + std::to_string(line); }
 inline std::string at_byte(std::size_t offset) { return "byte " + std::to_string(offset); }
 

@@ -27,7 +27,14 @@ inline const std::map<std::string, Crossings>& crossings_names() {
 }
 
 inline const std::map<std::string, Fit>& fit_names() {
-  static const std::map<std::string, Fit> names{{"onto", Fit::onto}, {"inward", Fit::inward}, {"none", Fit::none}};
+  static const std::map<std::string, Fit> names{
+      {"onto", Fit::onto}, {"inward", Fit::inward}, {"none", Fit::none}};
+  return names;
+}
+
+inline const std::map<std::string, Verify>& verify_names() {
+  static const std::map<std::string, Verify> names{
+      {"auto", Verify::automatic}, {"full", Verify::full}, {"topology", Verify::topology}};
   return names;
 }
 

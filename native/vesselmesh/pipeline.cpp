@@ -8,6 +8,7 @@
 #include <string>
 
 #include "vesselmesh/curvature/curvature.hpp"
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -18,7 +19,67 @@ double subdivision_radius_scale() {
   return 1.0 / 0.657;
 }
 
+void validate(const MeshOptions& options) {
+  validate(options.sampling);
+  validate(options.subdivision);
+  if (options.max_triangles < 1)
+    throw std::invalid_argument("max_triangles must be at least 1, not " +
+                                std::to_string(options.max_triangles));
+}
+
+std::string Verification::problem() const {
+  std::vector<std::string> problems;
+  const TopologyReport& t = topology;
+  if (!t.closed_manifold())
+    problems.push_back("it is not a closed manifold (" + std::to_string(t.boundary_edges) +
+                       " boundary edges, " + std::to_string(t.non_manifold_edges) + " non-manifold edges, " +
+                       std::to_string(t.non_manifold_vertices) + " non-manifold vertices, " +
+                       std::to_string(t.inconsistent_edges) + " inconsistently oriented edges, " +
+                       std::to_string(t.degenerate_faces) + " degenerate faces)");
+  if (t.components != expected_components)
+    problems.push_back("it has " + std::to_string(t.components) + " pieces for the centerline's " +
+                       std::to_string(expected_components) + " components");
+  if (crossings_checked && crossing_pairs > pairs_in_overlapping_tubes)
+    problems.push_back("it crosses itself at " + std::to_string(crossing_pairs - pairs_in_overlapping_tubes) +
+                       " triangle pairs where the input's tubes do not overlap");
+  std::string out;
+  for (const std::string& p : problems) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
+namespace {
+
+SizeLimitError too_large(int64_t triangles, bool at_least, int64_t sections, const MeshOptions& options) {
+  return SizeLimitError("the surface would have " + std::string(at_least ? "more than " : "") +
+                        std::to_string(triangles) + " triangles at level " +
+                        std::to_string(options.subdivision.levels) + " (" +
+                        std::string(at_least ? "over " : "") + std::to_string(sections) +
+                        " cross-sections), beyond the limit of " + std::to_string(options.max_triangles) +
+                        ": use fewer levels, a larger alpha (sections further apart), or raise max_triangles "
+                        "(--max-triangles)");
+}
+
+Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Verify how) {
+  Verification v;
+  v.topology = check_topology(mesh);
+  v.expected_components = centerline.components;
+  v.loops = centerline.loops;
+  const auto triangles = static_cast<int64_t>(mesh.faces.size());
+  v.crossings_checked =
+      how == Verify::full || (how == Verify::automatic && triangles <= kVerifyCrossingsUpTo);
+  if (v.crossings_checked) {
+    const IntersectionReport x = find_self_intersections(mesh, &centerline);
+    v.crossing_pairs = x.pairs;
+    v.pairs_in_overlapping_tubes = x.pairs_in_overlapping_tubes;
+  }
+  return v;
+}
+
+}  // namespace
+
 MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options) {
+  validate(options);
+  if (graph.edges.empty()) throw std::invalid_argument("the centerline has no edges");
   using Clock = std::chrono::steady_clock;
   MeshResult result;
   auto record = [&](const char* stage, Clock::time_point start, int64_t vertices, int64_t faces) {
@@ -47,7 +108,18 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   tile.sampling = options.sampling;
   tile.caps = options.caps;
   tile.radius_scale = subdivision_radius_scale();
-  const BaseMesh base = tile_base_mesh(*centerline, tile);
+  // Every section brings at least four quads, eight triangles, and each level four times as many.
+  const int64_t per_base_triangle = int64_t{1} << (2 * options.subdivision.levels);
+  tile.max_sections = std::max<int64_t>(2, options.max_triangles / (8 * per_base_triangle));
+  BaseMesh base;
+  try {
+    base = tile_base_mesh(*centerline, tile);
+  } catch (const SizeLimitError&) {
+    throw too_large(8 * per_base_triangle * tile.max_sections, true, tile.max_sections, options);
+  }
+  const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
+  if (base_triangles * per_base_triangle > options.max_triangles)
+    throw too_large(base_triangles * per_base_triangle, false, base.sections, options);
   record("tile", start, static_cast<int64_t>(base.vertices.size()),
          static_cast<int64_t>(base.quads.size() + base.triangles.size()));
   result.sections = base.sections;
@@ -83,6 +155,10 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     record("curvature", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }
+  start = Clock::now();
+  result.verification = verify(result.mesh, *centerline, options.verify);
+  record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
+         static_cast<int64_t>(result.mesh.faces.size()));
   return result;
 }
 
@@ -102,6 +178,16 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["parted_vertices"] = result.parted_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
+  const Verification& v = result.verification;
+  j["verified"] = {{"closed_manifold", v.topology.closed_manifold()},
+                   {"components", v.topology.components},
+                   {"expected_components", v.expected_components},
+                   {"genus", v.topology.genus},
+                   {"loops", v.loops},
+                   {"crossings_checked", v.crossings_checked},
+                   {"crossing_pairs", v.crossing_pairs},
+                   {"pairs_in_overlapping_tubes", v.pairs_in_overlapping_tubes},
+                   {"problem", v.problem()}};
   double total = 0;
   for (const StageStats& s : result.stages) {
     j["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"vertices", s.vertices}, {"faces", s.faces}});

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/fit/fit.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/tri_mesh.hpp"
@@ -16,6 +17,13 @@
 
 namespace vesselmesh {
 
+/// What the pipeline checks of its own surface before handing it out: `automatic` checks that it is a
+/// closed manifold and, up to kVerifyCrossingsUpTo triangles (where the search costs about as much as
+/// the meshing), that it does not cross itself; `full` checks crossings whatever the size; `topology`
+/// never does.
+enum class Verify { automatic, full, topology };
+constexpr int64_t kVerifyCrossingsUpTo = 1'000'000;
+
 struct MeshOptions {
   Crossings crossings = Crossings::separate;
   SamplingOptions sampling;
@@ -23,6 +31,26 @@ struct MeshOptions {
   SubdivisionOptions subdivision;
   Fit fit = Fit::onto;     ///< which vertices come onto the input's tubes (fit/fit.hpp)
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
+  /// Throw SizeLimitError, before the work, rather than build a surface with more triangles than this
+  /// (counting every triangle of the last level, which the adaptive methods also compute).
+  int64_t max_triangles = 50'000'000;
+  Verify verify = Verify::automatic;
+};
+
+/// Throws std::invalid_argument naming the first option out of its range (NaN included).
+void validate(const MeshOptions& options);
+
+/// The pipeline's check of its own surface (check/check_mesh.hpp): what `vesselmesh check` would reject.
+struct Verification {
+  TopologyReport topology;
+  int64_t expected_components = 0;  ///< the centerline's components
+  int64_t loops = 0;                ///< the centerline's loops (a lost one is no failure: docs/pipeline.md)
+  bool crossings_checked = false;
+  int64_t crossing_pairs = 0;              ///< self-intersecting triangle pairs (when checked)
+  int64_t pairs_in_overlapping_tubes = 0;  ///< of those, where the input's tubes themselves overlap
+  /// Empty when the surface is a closed manifold with one piece per component and crosses itself only
+  /// where the input's tubes overlap; else what is wrong, in words.
+  std::string problem() const;
 };
 
 struct StageStats {
@@ -41,8 +69,9 @@ struct MeshResult {
   int64_t separated_points = 0;   ///< centerline points the separate stage moved
   double largest_separation = 0;  ///< its largest move, relative to the point's radius
   int64_t crossings_left = 0;     ///< crossing edge pairs it left
-  int64_t fitted_vertices = 0;  ///< vertices the fit stage moved
-  int64_t parted_vertices = 0;  ///< vertices it gave a move off another vessel's overlapping tube
+  int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
+  int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube
+  Verification verification;
 };
 
 /// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices
@@ -50,6 +79,8 @@ struct MeshResult {
 /// tube towards its axis (test_pipeline: RadiusScaleMakesSubdividedTubesFaithful).
 double subdivision_radius_scale();
 
+/// Throws std::invalid_argument for options validate() rejects, SizeLimitError (error.hpp) when the
+/// surface would exceed options.max_triangles, and std::invalid_argument for a graph without edges.
 MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options);
 
 /// Counts and per-stage times as JSON text.

@@ -64,6 +64,51 @@ def test_bad_arrays_raise_input_error_naming_the_element(kwargs, message):
         vm.Graph([[0, 0, 0], [1, 0, 0]], [[0, 1]], **kwargs)
 
 
+@pytest.mark.parametrize("edges", [np.array([[0.0, 1.0]]), [[0, 1.5]], np.array([[True, False]])])
+def test_edges_that_are_not_integers_are_refused_rather_than_truncated(edges):
+    with pytest.raises(vm.InputError, match="edges must hold integer point indices"):
+        vm.Graph([[0, 0, 0], [1, 0, 0]], edges, radius=[1, 1])
+
+
+@pytest.mark.parametrize("points, radius, message", [
+    ([[0, 0, 0], [1e302, 0, 0]], [1, 1], "point 1: coordinate beyond"),
+    ([[0, 0, 0], [2e8, 0, 0]], [1, 1], "edge 0: .* times its radius 1, beyond the 1e\\+07"),
+    ([[0, 0, 0], [10, 0, 0]], [1, 1e-300], "point 1: radius 1e-300 is below 1e-12"),
+    ([[0, 0, 0], [0, 0, 0]], [1, 1], "every edge joins two points at the same place"),
+])
+def test_extreme_arrays_are_refused_as_the_command_line_refuses_them(points, radius, message):
+    with pytest.raises(vm.InputError, match=message):
+        vm.Graph(points, [[0, 1]], radius=radius)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(alpha=float("nan")), "alpha"), (dict(alpha=0.0), "alpha"), (dict(alpha=-1.0), "alpha"),
+    (dict(alpha=float("inf")), "alpha"), (dict(beta=float("nan")), "beta"), (dict(beta=-1.0), "beta"),
+    (dict(threshold=float("nan")), "threshold"), (dict(angle=float("nan")), "angle"),
+    (dict(max_triangles=0), "max_triangles"), (dict(verify="sometimes"), "verify"),
+])
+def test_mesh_refuses_options_the_command_line_refuses(project_data, kwargs, message):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    with pytest.raises(ValueError, match=message):
+        vm.mesh(graph, **kwargs)
+
+
+def test_mesh_over_the_triangle_limit_stops_before_the_work_saying_what_to_change(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    with pytest.raises(vm.SizeLimitError, match="beyond the limit of 1000: use fewer levels"):
+        vm.mesh(graph, max_triangles=1000)
+    assert issubclass(vm.SizeLimitError, RuntimeError)
+
+
+def test_mesh_reports_its_own_check_of_the_surface(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    verified = vm.mesh(graph)["stats"]["verified"]
+    assert verified["closed_manifold"] and verified["crossings_checked"]
+    assert verified["components"] == verified["expected_components"] == 1
+    assert verified["problem"] == ""
+    assert not vm.mesh(graph, verify="topology")["stats"]["verified"]["crossings_checked"]
+
+
 def test_edge_index_out_of_range_is_an_input_error():
     with pytest.raises(vm.InputError, match="edge 0: point index 5"):
         vm.Graph([[0, 0, 0], [1, 0, 0]], [[0, 5]], radius=[1, 1])

@@ -63,20 +63,18 @@ std::vector<T> at_points(const BranchCurve& c, const Resampled& r, const std::ve
   return out;
 }
 
-double resampling_step(const BranchCurve& c) {
-  const double mean_edge = c.length() / static_cast<double>(c.points.size() - 1);
-  return std::min(mean_edge, 0.25 * c.median_radius);
-}
-
 /// Curvature and unit tangent at each point: the resampled curve convolved with Gaussian derivative
 /// kernels, κ = |X' × X''| / |X'|³. At least a radius wide: a tube shows nothing of its centerline finer
 /// than its radius, and at half a radius the staircase of a voxel centerline (points half a radius apart)
 /// still reads as bends of radius r, crowding sections every half radius. At least one mean edge wide:
 /// between sparse points the curve is unknown, and a polyline's corners are not bends of the vessel.
+/// Samples go a quarter radius apart, or a 32nd of the width where that is wider (sparse tracings): the
+/// kernel then has at most 257 taps and the branch at most 32 samples per mean edge, so the work is
+/// linear in its points whatever its length in radii.
 void smoothed_differentials(BranchCurve& c, bool ring) {
-  const double step = resampling_step(c);
   const double mean_edge = c.length() / static_cast<double>(c.points.size() - 1);
-  const double sigma = std::max({c.median_radius, 2.0 * step, mean_edge});
+  const double sigma = std::max(c.median_radius, mean_edge);
+  const double step = std::max(std::min(mean_edge, 0.25 * c.median_radius), sigma / 32);
   const Resampled r = resample(c, ring, step, 4.0 * sigma);
   const int half = r.half;
   const double h = r.h;

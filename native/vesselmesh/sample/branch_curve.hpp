@@ -32,9 +32,9 @@ struct BranchCurve {
 };
 
 /// The branch's curve with its curvature and tangents: scale-space curvature of the curve smoothed by a
-/// Gaussian of width max(median radius, 2 × resampling step, mean edge length), so neither staircase noise of
-/// voxel centerlines nor the corners of sparsely sampled polylines read as bends. Ends are extended by point
-/// reflection (curvature → 0 at a free end).
+/// Gaussian of width max(median radius, mean edge length), so neither staircase noise of voxel centerlines nor
+/// the corners of sparsely sampled polylines read as bends. Ends are extended by point reflection (curvature
+/// → 0 at a free end). Linear in the branch's points, whatever its length in radii.
 BranchCurve branch_curve(const CenterlineGraph& graph, const Branch& branch);
 
 }  // namespace vesselmesh

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "vesselmesh/error.hpp"
 
 namespace vesselmesh {
 
@@ -32,20 +36,23 @@ struct Spacing {
 };
 
 /// The next section from `s` towards `limit` (either direction): the first root of gap(s, ·), bracketed
-/// by walking the curve's points, then bisected. Nothing when no admissible position precedes `limit`.
+/// by walking the curve's points, in strides of g(s) along long edges, then bisected. Nothing when no
+/// admissible position precedes `limit`.
 std::optional<double> step(const Spacing& sp, double s, double limit) {
   const BranchCurve& c = sp.curve;
   const bool forward = limit > s;
+  const double stride = forward ? sp.g(s) : -sp.g(s);
   double previous = s;
-  // Candidate bracket ends: the curve's points strictly between s and limit, then limit itself.
+  // Candidate bracket ends: the curve's points strictly between s and limit, then limit itself; at most
+  // a stride apart, so that an edge thousands of radii long costs a few strides, not a long bisection.
   std::size_t i = c.segment(s);
   auto next_knot = [&]() -> double {
     if (forward) {
       while (i + 1 < c.arc.size() && c.arc[i + 1] <= previous) ++i;
-      return i + 1 < c.arc.size() ? std::min(c.arc[i + 1], limit) : limit;
+      return std::min({i + 1 < c.arc.size() ? c.arc[i + 1] : limit, limit, previous + stride});
     }
     while (i > 0 && c.arc[i] >= previous) --i;
-    return c.arc[i] < previous ? std::max(c.arc[i], limit) : limit;
+    return std::max({c.arc[i] < previous ? c.arc[i] : limit, limit, previous + stride});
   };
   while (previous != limit) {
     const double t = next_knot();
@@ -62,19 +69,27 @@ std::optional<double> step(const Spacing& sp, double s, double limit) {
   return std::nullopt;
 }
 
-std::vector<double> unidirectional(const Spacing& sp, double start, double end) {
+void check_count(std::size_t sections, int64_t max_sections) {
+  if (static_cast<int64_t>(sections) > max_sections)
+    throw SizeLimitError("a branch takes more than " + std::to_string(max_sections) + " sections");
+}
+
+std::vector<double> unidirectional(const Spacing& sp, double start, double end, int64_t max_sections) {
   std::vector<double> out{start};
   while (auto next = step(sp, out.back(), end)) {
     if (*next >= end) break;
     out.push_back(*next);
+    check_count(out.size() + 1, max_sections);
   }
   out.push_back(end);
   return out;
 }
 
-std::vector<double> bidirectional(const Spacing& sp, double start, double end, double meet_min_ratio) {
+std::vector<double> bidirectional(const Spacing& sp, double start, double end, double meet_min_ratio,
+                                  int64_t max_sections) {
   std::vector<double> left{start}, right{end};
   while (true) {
+    check_count(left.size() + right.size(), max_sections);
     const auto l = step(sp, left.back(), right.back());
     const auto r = step(sp, right.back(), left.back());
     if (!l || !r) break;
@@ -146,13 +161,30 @@ void snap_to_corners(const Spacing& sp, std::vector<double>& arcs, double meet_m
 
 }  // namespace
 
+void validate(const SamplingOptions& options) {
+  if (!(std::isfinite(options.alpha) && options.alpha > 0))
+    throw std::invalid_argument("alpha (the section spacing) must be a positive number, not " +
+                                number_text(options.alpha));
+  if (!(std::isfinite(options.beta) && options.beta >= 0))
+    throw std::invalid_argument("beta (the curvature weight) must be a number of at least 0, not " +
+                                number_text(options.beta));
+  if (!(options.meet_min_ratio >= 0 && options.meet_min_ratio <= 1))
+    throw std::invalid_argument("meet_min_ratio must be in [0, 1], not " +
+                                number_text(options.meet_min_ratio));
+  if (options.max_sections < 2)
+    throw std::invalid_argument("max_sections must be at least 2, not " +
+                                std::to_string(options.max_sections));
+}
+
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
                                   const SamplingOptions& options) {
+  validate(options);
   const Spacing sp{curve, options.alpha, options.beta * curve.median_radius};
   if (end <= start) return {start, end};
-  std::vector<double> arcs = options.method == Sampling::unidirectional
-                                 ? unidirectional(sp, start, end)
-                                 : bidirectional(sp, start, end, options.meet_min_ratio);
+  std::vector<double> arcs =
+      options.method == Sampling::unidirectional
+          ? unidirectional(sp, start, end, options.max_sections)
+          : bidirectional(sp, start, end, options.meet_min_ratio, options.max_sections);
   snap_to_corners(sp, arcs, options.meet_min_ratio);
   return arcs;
 }

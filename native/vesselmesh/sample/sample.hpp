@@ -7,6 +7,8 @@
 // polyline (over 30°, standing out a radius) each take the nearest section, so that the tube does not cut
 // them.
 
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "vesselmesh/sample/branch_curve.hpp"
@@ -21,11 +23,18 @@ struct SamplingOptions {
   double beta = 4.0;   ///< curvature weight, relative: β = beta × the branch's median radius
   /// A final middle gap shorter than this fraction of its desired length is merged away (0 = literal).
   double meet_min_ratio = 0.5;
+  /// sample_branch throws SizeLimitError rather than place more sections than this on one branch.
+  int64_t max_sections = std::numeric_limits<int64_t>::max();
 };
+
+/// Throws std::invalid_argument naming the option unless alpha is finite and positive, beta finite and
+/// not negative, meet_min_ratio in [0, 1] and max_sections at least 2.
+void validate(const SamplingOptions& options);
 
 /// Arc positions of the sections on [start, end] (start and end included, increasing). The step
 /// solves |x(s′) − x(s)| = g(s′) + g(s) on the continuous curve (bisection on a bracket, so it always
-/// converges); g is clamped to at least r/4 so sections never nearly coincide.
+/// converges); g is clamped to at least r/4 so sections never nearly coincide. The work is proportional to
+/// the sections placed (and the curve's points), and stops at options.max_sections.
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
                                   const SamplingOptions& options);
 

@@ -56,7 +56,9 @@ bool near_along_graph(const CenterlineGraph& g, int32_t e, double s, int32_t f, 
 
 // How far along branch a from its end at joint j its axis lies all the way within its own radius of a
 // tube of branch b: as far as the two tubes overlap from the joint on, as at a fork at a small angle.
-// Samples every half radius, and stops at the first that lies out of b's tube.
+// Samples every half radius, at most kMaxSamples per edge (an edge thousands of radii long runs
+// beside another vessel's tube only by accident of the tracing), and stops at the first that lies out of
+// b's tube.
 double overlap_from_joint(const CenterlineGraph& g, const RoundCones& cones, int32_t a, int32_t b,
                           int32_t j) {
   const Branch& branch = g.branches[a];
@@ -68,7 +70,9 @@ double overlap_from_joint(const CenterlineGraph& g, const RoundCones& cones, int
     const RoundCone& k = cones.cone(edge);
     const bool c0_first = g.edges[edge][0] == branch.points[from_front ? step : n - step];
     const double length = (k.c1 - k.c0).norm();
-    const int samples = 1 + static_cast<int>(std::ceil(length / (0.5 * std::min(k.r0, k.r1))));
+    constexpr double kMaxSamples = 256;
+    const int samples =
+        1 + static_cast<int>(std::min(std::ceil(length / (0.5 * std::min(k.r0, k.r1))), kMaxSamples));
     for (int q = 0; q <= samples; ++q) {
       const double u = static_cast<double>(q) / samples, param = c0_first ? u : 1 - u;
       const std::vector<ConeDistance> near = cones.within(k.point_at(param), k.radius_at(param));

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/subdivide/loop.hpp"
 
 namespace vesselmesh {
@@ -216,16 +217,20 @@ std::vector<uint8_t> dihedral_tags(const TriMesh& mesh, double angle) {
 
 }  // namespace
 
-SubdividedMesh subdivide(const TriMesh& base, const SubdivisionOptions& options) {
+void validate(const SubdivisionOptions& options) {
   if (options.levels < 0 || options.levels > 4)
     throw std::invalid_argument("levels must be 0 to 4, got " + std::to_string(options.levels));
   if (options.uniform_levels < 0)
     throw std::invalid_argument("uniform levels must be ≥ 0, got " + std::to_string(options.uniform_levels));
   if (!(options.threshold >= 0 && options.threshold <= 1))
-    throw std::invalid_argument("threshold must be in [0, 1], got " + std::to_string(options.threshold));
+    throw std::invalid_argument("threshold must be in [0, 1], got " + number_text(options.threshold));
   if (!(options.angle_degrees >= 0 && options.angle_degrees <= 180))
-    throw std::invalid_argument("angle must be in [0, 180] degrees, got " + std::to_string(options.angle_degrees));
+    throw std::invalid_argument("angle must be in [0, 180] degrees, got " +
+                                number_text(options.angle_degrees));
+}
 
+SubdividedMesh subdivide(const TriMesh& base, const SubdivisionOptions& options) {
+  validate(options);
   const Hierarchy hierarchy = uniform_hierarchy(base, options.levels);
   Forest forest(hierarchy);
   SubdividedMesh out;

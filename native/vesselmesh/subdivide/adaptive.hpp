@@ -48,12 +48,16 @@ struct SubdividedMesh {
   std::vector<double> tagged;        ///< per level: the fraction of the triangles before it that it tagged
 };
 
+/// Throws std::invalid_argument naming the option for levels outside 0..4, a negative uniform_levels, a
+/// threshold outside [0, 1] and an angle outside [0, 180] (NaN included).
+void validate(const SubdivisionOptions& options);
+
 /// `options.levels` levels of (adaptive) Loop subdivision of a closed or open triangle mesh, with every
 /// vertex moved to the limit surface. Refinement::uniform gives loop_limit(loop_subdivide(base, levels)).
 /// The base mesh's vertex properties are not carried.
 ///
-/// Throws std::invalid_argument for levels outside 0..4, a negative uniform_levels, a threshold outside
-/// [0, 1], an angle outside [0, 180], and for the meshes loop_subdivide rejects.
+/// Throws std::invalid_argument for the options validate() rejects and for the meshes loop_subdivide
+/// rejects.
 SubdividedMesh subdivide(const TriMesh& base, const SubdivisionOptions& options);
 
 }  // namespace vesselmesh

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/frames/frames.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/graph/union_find.hpp"
@@ -641,7 +642,8 @@ class Tiler {
       const double along = offset.normalized().dot(axis);
       mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
     }
-    ++mesh_.sections;
+    if (++mesh_.sections > opt_.max_sections)
+      throw SizeLimitError("more than " + std::to_string(opt_.max_sections) + " sections");
     return first;
   }
 
@@ -860,7 +862,9 @@ class Tiler {
     const End* tail = tail_[b] >= 0 ? &ends_[tail_[b]] : nullptr;
     const bool ring = first_point(b) == last_point(b) && !head;
     const double from = head ? head->t : 0.0, to = c.length() - (tail ? tail->t : 0.0);
-    std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
+    SamplingOptions sampling = opt_.sampling;
+    sampling.max_sections = std::max<int64_t>(2, opt_.max_sections - mesh_.sections);
+    std::vector<double> arcs = sample_branch(c, from, to, sampling);
     if (ring && arcs.size() < 4) arcs = {0.0, c.length() / 3, 2 * c.length() / 3, c.length()};
 
     std::vector<Section> sections(arcs.size());

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -27,6 +28,8 @@ struct TileOptions {
   /// Square corners sit at radius_scale × r, so that the subdivided surface, which shrinks towards the
   /// axis, ends at radius r (see subdivision_radius_scale).
   double radius_scale = 1.0;
+  /// Throws SizeLimitError rather than place more cross-sections than this in all.
+  int64_t max_sections = std::numeric_limits<int64_t>::max();
 };
 
 struct BaseMesh {

@@ -1,0 +1,168 @@
+// Inputs at the edge of what numbers allow (native/tests/data/extreme/): `vesselmesh mesh` ends each with a
+// surface that `vesselmesh check` accepts or with an error that names the point or edge and exits non-zero;
+// never a crash, a hang (ctest's timeout), or a broken surface reported as a success.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+#include "test_support.hpp"
+#include "vesselmesh/centerline.hpp"
+#include "vesselmesh/error.hpp"
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/pipeline.hpp"
+
+namespace {
+
+using vesselmesh::test::CliRun;
+using vesselmesh::test::run_cli;
+using vesselmesh::test::temp_path;
+using vesselmesh::test::test_data;
+
+std::string extreme(const std::string& name) { return test_data("extreme/" + name); }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+/// `vesselmesh mesh FILE -o out.ply [options]`.
+CliRun mesh(const std::string& file, const std::string& options = "") {
+  return run_cli("mesh '" + file + "' -o '" + temp_path("out.ply") + "' " + options);
+}
+
+/// The run ended with a surface that `vesselmesh check --centerline` accepts.
+void expect_accepted_surface(const CliRun& run, const std::string& file) {
+  ASSERT_EQ(run.status, 0) << run.output;
+  const CliRun check = run_cli("check '" + temp_path("out.ply") + "' --centerline '" + file + "'");
+  EXPECT_EQ(check.status, 0) << check.output;
+}
+
+/// The run ended with status 1 and an error naming the file and each of `parts`.
+void expect_error(const CliRun& run, const std::string& file, const std::vector<std::string>& parts) {
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "error: " + file)) << run.output;
+  for (const std::string& part : parts) EXPECT_TRUE(contains(run.output, part)) << part << " in " << run.output;
+}
+
+}  // namespace
+
+TEST(ExtremeInputs, EdgeOfTwoHundredMillionRadiiIsRefusedNamingTheEdge) {
+  const std::string file = extreme("edge_2e8_radii.swc");
+  expect_error(mesh(file), file, {"edge 0", "2e+08 times its radius 1", "beyond the 1e+07"});
+}
+
+TEST(ExtremeInputs, CoordinateOfTenToThe302IsRefusedNamingThePoint) {
+  const std::string file = extreme("point_at_1e302.swc");
+  expect_error(mesh(file), file, {"point 1", "coordinate beyond ±1e+150", "1e+302"});
+}
+
+TEST(ExtremeInputs, CoordinatesNearTenToThe300AreRefusedByInfoToo) {
+  const std::string file = extreme("coordinates_1e300.swc");
+  expect_error(run_cli("info '" + file + "'"), file, {"point 0", "radius 1e+285 is beyond 1e+150"});
+  expect_error(mesh(file), file, {"point 0"});
+}
+
+TEST(ExtremeInputs, RadiiBelowTheRoundingOfTheCoordinatesAreRefusedNamingThePoint) {
+  for (const char* name : {"radius_1e-300.swc", "radius_denormal.swc"}) {
+    const std::string file = extreme(name);
+    expect_error(mesh(file), file, {"point 1: radius", "is below 1e-12 of the data set's size"});
+  }
+}
+
+TEST(ExtremeInputs, RadiusOfTenToThe308IsRefused) {
+  const std::string file = extreme("radius_1e308.swc");
+  expect_error(mesh(file), file, {"point 0: radius 1e+308 is beyond 1e+150"});
+}
+
+TEST(ExtremeInputs, AllPointsAtOnePlaceAreRefusedRatherThanGivingAnEmptySurface) {
+  const std::string file = extreme("all_points_identical.swc");
+  expect_error(mesh(file), file, {"every edge joins two points at the same place"});
+  expect_error(run_cli("info '" + file + "'"), file, {"nothing to mesh"});
+}
+
+TEST(ExtremeInputs, ForkWithAnEdgeOfTenMillionRadiiStopsAtTheTriangleLimitBeforeTheWork) {
+  const std::string file = extreme("fork_edge_1e7_radii.swc");
+  EXPECT_EQ(run_cli("info '" + file + "'").status, 0);
+  std::filesystem::remove(temp_path("out.ply"));
+  const CliRun run = mesh(file);
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "beyond the limit of 50000000")) << run.output;
+  EXPECT_TRUE(contains(run.output, "--max-triangles")) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(temp_path("out.ply")));
+}
+
+TEST(ExtremeInputs, TriangleLimitIsTheCallersToSet) {
+  const std::string file = test_data("bifurcation.swc");
+  const CliRun refused = mesh(file, "--max-triangles 1000");
+  EXPECT_EQ(refused.status, 1) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "beyond the limit of 1000")) << refused.output;
+  expect_accepted_surface(mesh(file, "--max-triangles 100000"), file);
+}
+
+TEST(ExtremeInputs, AcceptedSurfacesOfLongLinesManyWayJointsAndBranchesDoublingBack) {
+  for (const char* name : {"line_1e4_radii.swc", "joint_100_way.swc", "doubling_back.swc"}) {
+    const std::string file = extreme(name);
+    SCOPED_TRACE(name);
+    expect_accepted_surface(mesh(file), file);
+  }
+}
+
+// Every input here ends one way or the other, and a surface reported as a success passes its check: a
+// ring whose tube fills its hole cannot be a torus that follows its tube, and says so.
+TEST(ExtremeInputs, EveryInputEndsWithAnAcceptedSurfaceOrAnError) {
+  for (const auto& entry : std::filesystem::directory_iterator(test_data("extreme"))) {
+    const std::string file = entry.path().string();
+    SCOPED_TRACE(file);
+    std::filesystem::remove(temp_path("out.ply"));
+    const CliRun run = mesh(file);
+    ASSERT_NE(run.status, -1) << "crashed: " << run.output;
+    if (run.status == 0) {
+      expect_accepted_surface(run, file);
+    } else {
+      EXPECT_TRUE(contains(run.output, "error: ")) << run.output;
+      if (run.status == 2) EXPECT_TRUE(contains(run.output, "fails its check")) << run.output;
+    }
+  }
+}
+
+TEST(ExtremeInputs, PipelineRefusesOptionsOutOfRangeNamingThem) {
+  using namespace vesselmesh;
+  const CenterlineGraph g = build_graph(CenterlineData{{Vec3(0, 0, 0), Vec3(10, 0, 0)}, {1, 1}, {{0, 1}}, {}, {}});
+  auto message = [&](auto change) {
+    MeshOptions o;
+    change(o);
+    try {
+      mesh_centerline(g, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.alpha = std::nan(""); }), "alpha"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.alpha = 0; }), "alpha"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.beta = -1; }), "beta"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.beta = INFINITY; }), "beta"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.subdivision.threshold = std::nan(""); }), "threshold"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.subdivision.levels = 5; }), "levels"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.max_triangles = 0; }), "max_triangles"));
+  EXPECT_EQ(message([](MeshOptions&) {}), "accepted");
+}
+
+TEST(ExtremeInputs, PipelineChecksItsOwnSurface) {
+  using namespace vesselmesh;
+  const CenterlineGraph g = build_graph(CenterlineData{{Vec3(0, 0, 0), Vec3(10, 0, 0)}, {1, 1}, {{0, 1}}, {}, {}});
+  MeshOptions o;
+  const Verification full = mesh_centerline(g, o).verification;
+  EXPECT_TRUE(full.topology.closed_manifold());
+  EXPECT_TRUE(full.crossings_checked);
+  EXPECT_EQ(full.problem(), "");
+  o.verify = Verify::topology;
+  EXPECT_FALSE(mesh_centerline(g, o).verification.crossings_checked);
+
+  Verification broken = full;
+  broken.topology.boundary_edges = 3;
+  broken.crossing_pairs = 5;
+  broken.pairs_in_overlapping_tubes = 1;
+  EXPECT_TRUE(contains(broken.problem(), "not a closed manifold (3 boundary edges")) << broken.problem();
+  EXPECT_TRUE(contains(broken.problem(), "crosses itself at 4 triangle pairs")) << broken.problem();
+}
