@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The project's one entry point (the README's quick start calls it).
 #   scripts/dev.sh demo   install what is missing, build, run the main job on the built-in default
-#   scripts/dev.sh test   install what is missing, build, run every test (C++, sanitizers, Python, Blender)
-#   scripts/dev.sh build  install what is missing and build
+#   scripts/dev.sh test      install what is missing, build, run the tests (C++, Python, Blender): ~5 minutes
+#   scripts/dev.sh sanitize  the C++ tests again under AddressSanitizer and UBSan (CI runs it; ~15 minutes)
+#   scripts/dev.sh build     install what is missing and build
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -57,16 +58,6 @@ run_tests() {
   echo "== C++ tests"
   ctest --test-dir "$build" --output-on-failure -j"$jobs" || failed+=("C++ tests")
 
-  # Under the sanitizers the big-input timing prints and the shared-data surface suites (named Shared…,
-  # which only repeat the same code on larger inputs) would take most of an hour; they run in the build above.
-  echo "== C++ tests under AddressSanitizer and UBSan"
-  cmake -S "$root" -B "$build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DVESSELMESH_SANITIZE=ON \
-        -DVESSELMESH_PYTHON=OFF >/dev/null
-  cmake --build "$build/sanitize" -j"$jobs"
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir "$build/sanitize" --output-on-failure -j"$jobs" -E "^Shared|Timing|Million|PrintsTheTime" \
-    || failed+=("sanitizer tests")
-
   echo "== Python module tests (/usr/bin/python3)"
   VESSELMESH_PYTHON_PATH="$build/python" /usr/bin/python3 -m pytest -q native/python/tests || failed+=("Python tests")
 
@@ -81,9 +72,23 @@ run_tests() {
   echo "all test suites passed"
 }
 
+# Under the sanitizers the big-input timing prints and the shared-data surface suites (named Shared…, which
+# only repeat the same code on larger inputs) would take most of an hour; they run in the Release build.
+run_sanitized() {
+  install_missing
+  echo "== C++ tests under AddressSanitizer and UBSan"
+  cmake -S "$root" -B "$build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DVESSELMESH_SANITIZE=ON \
+        -DVESSELMESH_PYTHON=OFF >/dev/null
+  cmake --build "$build/sanitize" -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir "$build/sanitize" --output-on-failure -j"$jobs" -E "^Shared|Timing|Million|PrintsTheTime"
+  echo "sanitizer tests passed"
+}
+
 case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
+  sanitize) run_sanitized ;;
   build) build ;;
-  *) echo "usage: scripts/dev.sh demo|test|build" >&2; exit 2 ;;
+  *) echo "usage: scripts/dev.sh demo|test|sanitize|build" >&2; exit 2 ;;
 esac
