@@ -144,7 +144,10 @@ TEST(Adaptive, TransitionTrianglesDoNotThinOutLevelAfterLevel) {
     transition_min.push_back(min_angle_degrees(s.mesh, s.transition, 1));
     EXPECT_GT(transition_min.back(), 0.4 * regular) << "levels " << levels;
   }
-  EXPECT_GE(transition_min[3], 0.8 * transition_min[1]);
+  // Split again, they would keep a quarter of it over two more levels; which triangles the curvature tags
+  // moves it by a fifth either way.
+  EXPECT_GE(transition_min[3], 0.6 * transition_min[1]);
+  EXPECT_GE(transition_min[3], 0.8 * transition_min[2]);
 }
 
 TEST(Adaptive, CurvatureSplitsTheBendAndLeavesTheStraightTube) {

@@ -35,36 +35,38 @@ std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
   return normals;
 }
 
-/// First and second derivatives of the fitted height function at the vertex, in scaled coordinates.
-struct HeightFit {
-  double hu = 0, hv = 0, huu = 0, huv = 0, hvv = 0;
-};
-
-/// Least-squares fit to the points (u, v, w); the vertex itself is the origin. nullopt when even the reduced
-/// model lacks the 3 points it needs.
-std::optional<HeightFit> fit_height(const std::vector<Vec3>& points) {
+/// Least-squares fit of the quadric through the vertex (the origin),
+///   F(u, v, w) = a·u² + b·uv + c·v² + d·u + e·v + f·w² + g·uw + h·vw − w = 0,
+/// to the points, each weighted by exp(−ρ²/2h²) with ρ its distance from the normal axis: c = (a..h).
+/// Unlike a height function w(u, v), which reads a circle sampled 22.5° apart 10 % too tight, a quadric
+/// holds spheres and cylinders exactly and a torus to second order (docs/pipeline.md, curvature). nullopt
+/// for fewer than 8 points or a rank-deficient system.
+std::optional<Eigen::Matrix<double, 8, 1>> fit_quadric(const std::vector<Vec3>& points, double h2) {
   const Eigen::Index n = static_cast<Eigen::Index>(points.size());
-  if (n >= 6) {
-    Eigen::Matrix<double, Eigen::Dynamic, 6> a(n + 1, 6);
-    Eigen::VectorXd w(n + 1);
-    a.row(0) << 1, 0, 0, 0, 0, 0;  // the vertex itself
-    w(0) = 0;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const Vec3& p = points[j];
-      a.row(j + 1) << 1, p.x(), p.y(), p.x() * p.x(), p.x() * p.y(), p.y() * p.y();
-      w(j + 1) = p.z();
-    }
-    Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 6>> qr(a.rows(), 6);
-    qr.setThreshold(1e-8);
-    qr.compute(a);
-    if (qr.rank() == 6) {
-      const Eigen::Matrix<double, 6, 1> c = qr.solve(w);
-      return HeightFit{c(1), c(2), 2 * c(3), c(4), 2 * c(5)};
-    }
+  if (n < 8) return std::nullopt;
+  Eigen::Matrix<double, Eigen::Dynamic, 8> a(n, 8);
+  Eigen::VectorXd w(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Vec3& p = points[j];
+    const double weight = std::sqrt(std::exp(-0.5 * (p.x() * p.x() + p.y() * p.y()) / h2));
+    a.row(j) << p.x() * p.x(), p.x() * p.y(), p.y() * p.y(), p.x(), p.y(), p.z() * p.z(), p.x() * p.z(),
+        p.y() * p.z();
+    a.row(j) *= weight;
+    w(j) = weight * p.z();
   }
+  Eigen::ColPivHouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, 8>> qr(a.rows(), 8);
+  qr.setThreshold(1e-8);
+  qr.compute(a);
+  if (qr.rank() < 8) return std::nullopt;
+  return Eigen::Matrix<double, 8, 1>(qr.solve(w));
+}
+
+/// Least-squares fit of the height function w = a·u² + b·uv + c·v² (the vertex normal is trusted), for
+/// neighbourhoods too small for the quadric; coefficients it cannot determine (collinear points) are zero.
+/// nullopt for fewer than 3 points.
+std::optional<Eigen::Matrix<double, 8, 1>> fit_height(const std::vector<Vec3>& points) {
+  const Eigen::Index n = static_cast<Eigen::Index>(points.size());
   if (n < 3) return std::nullopt;
-  // The vertex row is 0 = 0 here and adds nothing. A rank-deficient reduced system (collinear points) gets
-  // zeros for the coefficients it cannot determine.
   Eigen::Matrix<double, Eigen::Dynamic, 3> a(n, 3);
   Eigen::VectorXd w(n);
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -76,31 +78,35 @@ std::optional<HeightFit> fit_height(const std::vector<Vec3>& points) {
   qr.setThreshold(1e-8);
   qr.compute(a);
   const Eigen::Vector3d c = qr.solve(w);
-  return HeightFit{0, 0, 2 * c(0), c(1), 2 * c(2)};
+  Eigen::Matrix<double, 8, 1> quadric = Eigen::Matrix<double, 8, 1>::Zero();
+  quadric.head<3>() = c;
+  return quadric;
 }
 
-/// Writes vertex v's curvatures from the fit, undoing the scaling by `length`. The principal curvatures are
-/// the eigenvalues of the shape operator I⁻¹·II, i.e. of II·x = λ·I·x; their mean and product are the closed
-/// forms H = ((1 + hv²)huu − 2hu·hv·huv + (1 + hu²)hvv)/(2W^{3/2}) and K = (huu·hvv − huv²)/W².
-void store(const HeightFit& h, const Vec3& e1, const Vec3& e2, const Vec3& n, double length, size_t v,
-           VertexCurvature& out) {
-  const double big_w = 1 + h.hu * h.hu + h.hv * h.hv;
-  Eigen::Matrix2d first, second;
-  first << 1 + h.hu * h.hu, h.hu * h.hv, h.hu * h.hv, 1 + h.hv * h.hv;
-  second << h.huu, h.huv, h.huv, h.hvv;
-  second /= std::sqrt(big_w);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(second, first);
-  // w points outwards, so a convex surface bends towards −w and has negative eigenvalues: flip the signs,
+/// Writes vertex v's curvatures from the fitted quadric c (in the frame e1, e2, n, scaled by `length`):
+/// at the origin its gradient is (d, e, −1) and its Hessian [[2a, b, g], [b, 2c, h], [g, h, 2f]]; the
+/// shape operator is the Hessian restricted to the tangent plane over the gradient's length.
+void store(const Eigen::Matrix<double, 8, 1>& c, const Vec3& e1, const Vec3& e2, const Vec3& n, double length,
+           size_t v, VertexCurvature& out) {
+  const Eigen::Vector3d gradient(c(3), c(4), -1);
+  Eigen::Matrix3d hessian;
+  hessian << 2 * c(0), c(1), c(6), c(1), 2 * c(2), c(7), c(6), c(7), 2 * c(5);
+  const Eigen::Vector3d normal = gradient.normalized();
+  Eigen::Matrix<double, 3, 2> tangent;
+  tangent.col(0) = (Eigen::Vector3d::UnitX() - normal.x() * normal).normalized();
+  tangent.col(1) = normal.cross(Eigen::Vector3d(tangent.col(0)));
+  const Eigen::Matrix2d shape = tangent.transpose() * hessian * tangent / gradient.norm();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(shape);
+  // n points outwards, so a convex surface bends towards −n and has negative eigenvalues: flip the signs,
   // which makes the smaller eigenvalue k1.
   out.k1[v] = -solver.eigenvalues()(0) / length;
   out.k2[v] = -solver.eigenvalues()(1) / length;
   out.mean[v] = (out.k1[v] + out.k2[v]) / 2;
   out.gaussian[v] = out.k1[v] * out.k2[v];
   out.rms[v] = std::sqrt((out.k1[v] * out.k1[v] + out.k2[v] * out.k2[v]) / 2);
-  const Vec3 tangent_u = e1 + h.hu * n, tangent_v = e2 + h.hv * n;
-  const Eigen::Matrix2d& x = solver.eigenvectors();
-  out.dir1[v] = (x(0, 0) * tangent_u + x(1, 0) * tangent_v).normalized();
-  out.dir2[v] = (x(0, 1) * tangent_u + x(1, 1) * tangent_v).normalized();
+  const Eigen::Matrix3d frame = (Eigen::Matrix3d() << e1, e2, n).finished();
+  out.dir1[v] = (frame * tangent * solver.eigenvectors().col(0)).normalized();
+  out.dir2[v] = (frame * tangent * solver.eigenvectors().col(1)).normalized();
 }
 
 }  // namespace
@@ -160,16 +166,21 @@ VertexCurvature estimate_curvature(const TriMesh& mesh) {
           points.emplace_back(d.dot(e1), d.dot(e2), d.dot(n));
         }
       };
+      double h2 = 0;  // the mean squared 1-ring edge, in the scaled frame: the weights' width
+      for (const int32_t q : ring) h2 += (mesh.vertices[q] - p).squaredNorm();
+      h2 /= static_cast<double>(ring.size()) * length * length;
       const size_t one_ring = ring.size();
       grow(0, one_ring);
       const size_t two_ring = ring.size();
       points.clear();
       collect(0);
-      if (points.size() < 6) {
+      if (points.size() < 8) {
         grow(one_ring, two_ring);
         collect(two_ring);
       }
-      if (const std::optional<HeightFit> fit = fit_height(points)) store(*fit, e1, e2, n, length, vi, out);
+      std::optional<Eigen::Matrix<double, 8, 1>> fit = fit_quadric(points, h2);
+      if (!fit) fit = fit_height(points);
+      if (fit) store(*fit, e1, e2, n, length, vi, out);
     }
   });
   return out;

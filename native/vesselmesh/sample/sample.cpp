@@ -176,6 +176,14 @@ void validate(const SamplingOptions& options) {
                                 std::to_string(options.max_sections));
 }
 
+double estimated_sections(const BranchCurve& curve, const SamplingOptions& options) {
+  const Spacing sp{curve, options.alpha, options.beta * curve.median_radius};
+  double sections = 1;
+  for (std::size_t i = 0; i + 1 < curve.arc.size(); ++i)
+    sections += (curve.arc[i + 1] - curve.arc[i]) / (sp.g(curve.arc[i]) + sp.g(curve.arc[i + 1]));
+  return sections;
+}
+
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
                                   const SamplingOptions& options) {
   validate(options);

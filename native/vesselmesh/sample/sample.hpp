@@ -31,6 +31,11 @@ struct SamplingOptions {
 /// not negative, meet_min_ratio in [0, 1] and max_sections at least 2.
 void validate(const SamplingOptions& options);
 
+/// About how many sections sample_branch places on the whole curve: its length over the spacing, summed
+/// edge by edge. Linear in the curve's points, so that a surface far too large can be refused before the
+/// work; on a tightly bent curve the sampler, which spaces sections by chords, places fewer.
+double estimated_sections(const BranchCurve& curve, const SamplingOptions& options);
+
 /// Arc positions of the sections on [start, end] (start and end included, increasing). The step
 /// solves |x(s′) − x(s)| = g(s′) + g(s) on the continuous curve (bisection on a bracket, so it always
 /// converges); g is clamped to at least r/4 so sections never nearly coincide. The work is proportional to

@@ -110,6 +110,12 @@ class Tiler {
   }
 
   BaseMesh run() {
+    // Refused before the work when far beyond the limit (twice: the estimate follows the arcs, the
+    // sampler the chords); nearer to it, the sections placed are counted.
+    double estimate = 0;
+    for (const BranchCurve& c : curves_) estimate += estimated_sections(c, opt_.sampling);
+    if (estimate > 2.0 * static_cast<double>(opt_.max_sections))
+      throw SizeLimitError("about " + std::to_string(static_cast<int64_t>(estimate)) + " sections");
     find_patches();
     for (const Patch& p : patches_) build_patch(p);
     for (std::size_t b = 0; b < branches_.size(); ++b) {
