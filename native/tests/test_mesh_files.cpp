@@ -340,6 +340,14 @@ TEST_F(MeshFiles, FloatRoundingCountsMergedVerticesAndFacesThatLoseTheirArea) {
   EXPECT_EQ(at_1e9.merged_vertices, 21 * 21 - 1);
 }
 
+TEST_F(MeshFiles, FloatRoundingCountsFacesFlattenedByAFarOffsetAlongOneAxis) {
+  TriMesh mesh = octahedron();  // of radius 1.3: float steps of 64 at 1e9 flatten it onto x = 1e9
+  for (Vec3& p : mesh.vertices) p.x() += 1e9;
+  const FloatRounding rounding = float_rounding(mesh);
+  EXPECT_EQ(rounding.degenerate_faces, 8);
+  EXPECT_THROW(write_mesh(mesh, path("flat.stl")), std::runtime_error);
+}
+
 TEST_F(MeshFiles, PlyStoresDoublePositionsOnlyWhereFloatWouldChangeTheMesh) {
   write_mesh(far_grid(0), path("near.ply"));
   EXPECT_NE(ply_header(path("near.ply")).find("property float x\n"), std::string::npos);
@@ -372,7 +380,7 @@ TEST_F(MeshFiles, StlRefusesAMeshThatFloatWouldChangeAndSaysToWritePlyOrObj) {
       const std::string message = e.what();
       EXPECT_NE(message.find(target), std::string::npos) << message;
       EXPECT_NE(message.find("write PLY or OBJ instead"), std::string::npos) << message;
-      EXPECT_NE(message.find("of 800 triangles degenerate"), std::string::npos) << message;
+      EXPECT_NE(message.find("of 800 triangles degenerate, turned over or tilted"), std::string::npos) << message;
     }
     EXPECT_FALSE(fs::exists(target));
   }

@@ -161,7 +161,7 @@ void write_stl(const TriMesh& mesh, const std::string& path) {
     throw std::runtime_error(
         "cannot write '" + path + "': STL stores coordinates in single precision, which would make " +
         std::to_string(rounding.degenerate_faces) + " of " + std::to_string(mesh.faces.size()) +
-        " triangles degenerate or turned over" +
+        " triangles degenerate, turned over or tilted" +
         (rounding.merged_vertices > 0 ? " and merge " + std::to_string(rounding.merged_vertices) + " vertices" : "") +
         " (the surface lies far from the origin for its size); write PLY or OBJ instead, which keep the "
         "coordinates exact, or move the surface nearer the origin");
@@ -835,6 +835,7 @@ TriMesh read_stl(std::string_view bytes, const std::string& path) {
 }  // namespace
 
 FloatRounding float_rounding(const TriMesh& mesh) {
+  constexpr double kCos30 = 0.8660254037844386;
   using Key = std::array<uint32_t, 3>;
   struct KeyHash {
     std::size_t operator()(const Key& key) const {
@@ -862,7 +863,8 @@ FloatRounding float_rounding(const TriMesh& mesh) {
     const Vec3 exact = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
     if (exact == Vec3::Zero()) continue;  // degenerate as it is: float takes nothing from it
     const Vec3 single = (rounded[f[1]] - rounded[f[0]]).cross(rounded[f[2]] - rounded[f[0]]);
-    if (single.dot(exact) <= 0) ++result.degenerate_faces;
+    // Lost, turned over, or tilted by more than 30° (a face flattened onto a plane of float steps).
+    if (single.dot(exact) <= kCos30 * single.norm() * exact.norm()) ++result.degenerate_faces;
   }
   return result;
 }

@@ -14,8 +14,9 @@
 namespace vesselmesh {
 
 /// What single precision would do to a mesh's positions: the vertices that would land on another
-/// vertex's position, and the faces with an area that would lose it or turn over (their normal from
-/// the rounded positions no longer points the way the exact one does). A tree of size 10 lying 1e7 from
+/// vertex's position, and the faces with an area that would lose it, turn over or tilt by more than 30°
+/// (their normal from the rounded positions no longer points about the way the exact one does, as when
+/// float steps flatten a small surface lying far out along one axis). A tree of size 10 lying 1e7 from
 /// the origin has some; at 1e9 every face is one.
 struct FloatRounding {
   int64_t merged_vertices = 0;
