@@ -19,7 +19,7 @@ LIGHT_PREFIX = "VesselMesh "
 # The key light's power over its squared distance (W/m², about what lights a white wall to just below
 # white in the Standard view), and the world's light around the vessels.
 LIGHT_POWER = 12.0
-AMBIENT = 0.15
+AMBIENT = 0.08
 ENGINES = {"EEVEE": None, "CYCLES": "CYCLES", "WORKBENCH": "BLENDER_WORKBENCH"}
 
 
@@ -164,7 +164,7 @@ def set_up(context, surfaces=None, engine="EEVEE", background="auto", samples=64
         legend_obj = new_legend(context, coloured[0], back)
     for surface in surfaces:  # legends of the other surfaces would stand in the picture
         other = live(surface.vesselmesh.legend)
-        if other is not None and other != legend_obj:
+        if other is not None and other != legend_obj and legend_obj is not None:
             other.hide_render = True
     frame = [Vector(c) for c in camera.data.view_frame(scene=scene)]
     frame = [c / -c.z for c in frame]  # tangent units

@@ -85,7 +85,7 @@ def lights(location, target, right, up, forward, size):
         return np.asarray(target) + reach * direction / np.linalg.norm(direction)
 
     return [("key", around(-1.0, 1.0, 0.5), 1.0),
-            ("fill", around(1.0, -0.2, 0.7), 0.25),
+            ("fill", around(1.0, -0.2, 0.7), 0.15),
             ("rim", around(0.4, 0.9, -1.0), 0.9)]
 
 
