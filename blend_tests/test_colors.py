@@ -72,6 +72,8 @@ def test_legend_ticks_are_round_values_in_the_files_unit_without_exponents(legen
             assert lo - 1e-12 <= float(text) <= hi + 1e-12
     marks = dict((text, position) for position, text in legend.ticks(-0.6, 3.2, "rdbu"))
     assert marks["0"] == pytest.approx(0.5)  # zero at the diverging bar's centre
+    # Each side of a diverging bar its own round step and decimals.
+    assert [text for _, text in legend.ticks(-0.11, 0.05, "rdbu")] == ["-0.10", "-0.05", "0", "0.02", "0.04"]
     assert legend.title_lines("k2", "mm") == ["Saddles and bulges", "k2 in 1/mm"]
     assert legend.title_lines("gaussian", None)[1] == "K in 1/file unit²"
 

@@ -79,12 +79,13 @@ def ticks(lo, hi, name, intervals=5, min_gap=0.09):
     with its own step (its half of the bar spans its own extent); ticks nearer than min_gap of the bar to
     a kept one are dropped, zero and the outer ones kept first."""
     if name in colors.DIVERGING and lo < 0.0 < hi:
-        steps = [nice_step(-lo, intervals // 2), nice_step(hi, intervals // 2)]
-        values = sorted(set(_multiples(lo, 0.0, steps[0]) + _multiples(0.0, hi, steps[1])))
+        below, above = nice_step(-lo, intervals - 1), nice_step(hi, intervals - 1)
+        values = sorted(set(_multiples(lo, 0.0, below) + _multiples(0.0, hi, above)))
+        decimals = [decimals_for(below if v < 0 else above) for v in values]  # each side its own
     else:
-        steps = [nice_step(hi - lo, intervals)]
-        values = _multiples(lo, hi, steps[0])
-    decimals = max(decimals_for(s) for s in steps)
+        step = nice_step(hi - lo, intervals)
+        values = _multiples(lo, hi, step)
+        decimals = [decimals_for(step)] * len(values)
     positions = colors.normalize(values, lo, hi, name)
     # Keep zero first, then from the outside in, so that the bar's ends and its centre are labelled.
     order = sorted(range(len(values)), key=lambda i: (values[i] != 0.0, -abs(positions[i] - 0.5)))
@@ -92,7 +93,8 @@ def ticks(lo, hi, name, intervals=5, min_gap=0.09):
     for i in order:
         if all(abs(positions[i] - positions[j]) >= min_gap for j in kept):
             kept.append(i)
-    return [(float(positions[i]), format_value(values[i], decimals)) for i in sorted(kept, key=lambda i: positions[i])]
+    return [(float(positions[i]), format_value(values[i], decimals[i]))
+            for i in sorted(kept, key=lambda i: positions[i])]
 
 
 def colorbar(name, steps=64):
