@@ -10,6 +10,7 @@ import numpy as np
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper
 
+from .. import compat
 from ..core import colors, exporting
 from ..core.native import core
 from . import mesh as mesh_data
@@ -56,8 +57,9 @@ def _write_gltf(surface, path, with_colors, with_curvature):
     surface.select_set(True)
     context.view_layer.objects.active = surface
     try:
-        bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", use_selection=True, export_colors=with_colors,
-                                  export_attributes=with_curvature, export_apply=True)
+        bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", use_selection=True,
+                                  export_attributes=with_curvature, export_apply=True,
+                                  **compat.gltf_color_options(with_colors))
     finally:
         surface.select_set(False)
         for obj in selected:

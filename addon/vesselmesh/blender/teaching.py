@@ -106,14 +106,9 @@ def _render_settings(scene, engine, size, samples):
     scene.view_settings.look = "None"
     scene.view_settings.exposure = 0.0
     scene.render.film_transparent = False
-    eevee = scene.eevee
-    eevee.use_gtao = True  # ambient occlusion: depth where vessels meet and pass behind one another
-    eevee.gtao_distance = 0.15 * size
-    eevee.gtao_factor = 1.2
-    eevee.use_soft_shadows = True
-    eevee.shadow_cube_size = "2048"
-    eevee.taa_render_samples = samples
-    eevee.use_bloom = False
+    # EEVEE: ambient occlusion (depth where vessels meet and pass behind one another), soft shadows.
+    compat.set_present(scene.eevee, use_gtao=True, gtao_distance=0.15 * size, gtao_factor=1.2,
+                       use_soft_shadows=True, shadow_cube_size="2048", taa_render_samples=samples, use_bloom=False)
     cycles = scene.cycles
     cycles.samples = samples
     cycles.use_adaptive_sampling = True
