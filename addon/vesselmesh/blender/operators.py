@@ -17,10 +17,13 @@ from .properties import MeshSettings, color_options, copy_settings, mesh_options
 HEARTBEAT = 10.0  # seconds between "still working" lines on stdout in background mode
 
 
+BACKGROUND = bpy.app.background  # read once: say() is called from the meshing job's worker too
+
+
 def say(line):
     """A line on stdout in background mode, where headless users read what happens (the UI shows it in
     the status bar instead)."""
-    if bpy.app.background:
+    if BACKGROUND:
         print(f"VesselMesh: {line}", flush=True)
 
 
