@@ -63,13 +63,14 @@ class RadiusState:
         return centerline_arrays.scaled_radii(self.filled, self.selected, self.factor)[self.selected]
 
     def _write(self, values):
+        """Writes the selected items' radii (the others never change), each mouse move."""
         mesh = self.obj.data
         bm = bmesh.from_edit_mesh(mesh)
         layer = _layer(bm, self.domain)
         items = bm.verts if self.domain == "POINT" else bm.edges
         items.ensure_lookup_table()
-        for item, value in zip(items, values.tolist()):
-            item[layer] = value
+        for index in np.flatnonzero(self.selected).tolist():
+            items[index][layer] = float(values[index])
         bmesh.update_edit_mesh(mesh, loop_triangles=False, destructive=False)
 
 
