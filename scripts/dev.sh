@@ -44,12 +44,16 @@ demo() {
     --stats-json "$build/demo/stats.json"
   "$build/bin/vesselmesh" check "$build/demo/network.ply" --centerline "$build/demo/network.vtk"
 
-  echo "== the Blender add-on, installed into a fresh profile: the same network, coloured by curvature"
+  echo "== the Blender add-on, installed into a fresh profile: the same network (millimetres), the lecture picture"
   rm -rf "$build/demo/blender-profile"
   BLENDER_USER_CONFIG="$build/demo/blender-profile/config" BLENDER_USER_SCRIPTS="$build/demo/blender-profile/scripts" \
     blender -b --factory-startup --python-exit-code 1 --python addon/examples/batch.py -- \
-    --install "$build/vesselmesh.zip" --render "$build/demo/network.png" --blend "$build/demo/network.blend" \
-    "$build/demo/network.vtk" | grep -v -E "EGL|^Fra:|^ *Time:|^$"  # Blender's render progress and GPU chatter
+    --install "$build/vesselmesh.zip" --scale 0.001 --preset teaching \
+    --render "$build/demo/network.png" --engine cycles --samples 128 --size 1280 800 \
+    --export "$build/demo/surface" --format ply --blend "$build/demo/network.blend" \
+    "$build/demo/network.vtk" | grep -v -E "EGL|^Fra:|^ *Time:|^$|^Saved:"  # render progress, GPU chatter
+  echo "== the lecture picture: $build/demo/network.png (Teaching Render, Cycles); the surface with colours and"
+  echo "   curvature values: $build/demo/surface/network.ply; the scene: $build/demo/network.blend"
 }
 
 run_tests() {

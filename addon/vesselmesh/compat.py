@@ -88,3 +88,20 @@ def node_material(name):
     if not material.use_nodes:
         material.use_nodes = True
     return material
+
+
+def set_present(struct, **values):
+    """Sets the settings a struct has and skips the others (EEVEE's settings changed in 4.2: soft shadows,
+    shadow cube size and bloom went, ambient occlusion moved)."""
+    for name, value in values.items():
+        if name in struct.bl_rna.properties and not struct.bl_rna.properties[name].is_readonly:
+            setattr(struct, name, value)
+
+
+def gltf_color_options(colors):
+    """The glTF exporter's keyword for writing the active colour attribute (COLOR_0): export_colors up to
+    4.1, export_vertex_color from 4.2."""
+    properties = bpy.ops.export_scene.gltf.get_rna_type().properties
+    if "export_vertex_color" in properties:
+        return {"export_vertex_color": "ACTIVE" if colors else "NONE"}
+    return {"export_colors": colors}

@@ -16,6 +16,7 @@
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
+#include "vesselmesh/mesh/mesh_files.hpp"
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
@@ -358,6 +359,64 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       py::arg("faces"), py::arg("vertex_count"),
       "The edges of a triangle mesh: (edges (E,2) int32, lower vertex first, sorted; corner_edges (F,3) int32,\n"
       "the edge from each face's corner k to corner k+1), as Blender stores a mesh's edges and loops.");
+
+  m.def(
+      "write_mesh",
+      [](const std::string& path, const Points& vertices, const py::object& faces, const py::object& properties,
+         const py::object& colors, const std::string& material) {
+        TriMesh mesh = mesh_from_arrays(vertices, faces);
+        if (!properties.is_none())
+          for (const auto& [name, values] : py::cast<py::dict>(properties)) {
+            const auto array = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(values);
+            if (!array || array.ndim() != 1 || array.shape(0) != vertices.shape(0))
+              throw InputError("arrays", "property '" + py::cast<std::string>(name) + "'",
+                               "must be one value per vertex, shape (V,)");
+            mesh.vertex_properties.push_back(
+                {py::cast<std::string>(name), std::vector<float>(array.data(), array.data() + array.shape(0))});
+          }
+        WriteOptions options;
+        options.material = material;
+        if (!colors.is_none()) {
+          const py::array given = py::array::ensure(colors);
+          if (!given || !given.dtype().is(py::dtype::of<uint8_t>()) || given.ndim() != 2 ||
+              (given.shape(1) != 3 && given.shape(1) != 4) || given.shape(0) != vertices.shape(0))
+            throw InputError("arrays", "colors", "must be 8-bit sRGB, a uint8 array of shape (V, 3) or (V, 4)");
+          const auto rgba = py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(given);
+          const auto channels = rgba.shape(1);
+          options.alpha = channels == 4;
+          options.colors.resize(rgba.shape(0), {0, 0, 0, 255});
+          for (py::ssize_t v = 0; v < rgba.shape(0); ++v)
+            for (py::ssize_t c = 0; c < channels; ++c) options.colors[v][c] = rgba.data()[channels * v + c];
+        }
+        py::gil_scoped_release release;
+        write_mesh(mesh, path, options);
+      },
+      py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("properties") = py::none(),
+      py::arg("colors") = py::none(), py::arg("material") = "",
+      "Write a triangle mesh by the path's extension (.ply .obj .stl): properties {name: (V,) floats} become\n"
+      "PLY float properties; colors (V,3) or (V,4) uint8 sRGB become PLY uchar red green blue [alpha] and OBJ\n"
+      "`v x y z r g b`; material names an OBJ material written to the .mtl beside it. PLY stores positions as\n"
+      "double where float would merge vertices or flatten faces, OBJ as exact decimals; STL (float only)\n"
+      "refuses such a mesh (RuntimeError saying to write PLY or OBJ).");
+
+  m.def(
+      "read_mesh",
+      [](const std::string& path) {
+        TriMesh mesh;
+        {
+          py::gil_scoped_release release;
+          mesh = read_mesh(path);
+        }
+        py::dict out;
+        out["vertices"] = points_array(mesh.vertices);
+        out["faces"] = to_array(mesh.faces.empty() ? nullptr : mesh.faces.front().data(),
+                                {static_cast<py::ssize_t>(mesh.faces.size()), 3});
+        out["properties"] = property_dict(mesh.vertex_properties);
+        return out;
+      },
+      py::arg("path"),
+      "Read a .ply, .obj or .stl triangle mesh: dict with vertices (V,3) float64, faces (F,3) int32 and\n"
+      "properties {name: (V,) float32} (PLY's other vertex properties, colours included).");
 
   m.def(
       "surface_distance",

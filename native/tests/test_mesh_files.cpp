@@ -142,6 +142,11 @@ class MeshFiles : public ::testing::Test {
     return read_mesh(path(name));
   }
 
+  TriMesh round_trip_with(const TriMesh& mesh, const std::string& name, const WriteOptions& options) const {
+    write_mesh(mesh, path(name), options);
+    return read_mesh(path(name));
+  }
+
  private:
   fs::path dir_;
 };
@@ -217,13 +222,10 @@ TEST_F(MeshFiles, PlyRoundTripKeepsFloatPositionsAndIdenticalFaces) {
   }
 }
 
-TEST_F(MeshFiles, ObjRoundTripKeepsPositionsWithinOneMillionthAndIdenticalFaces) {
+TEST_F(MeshFiles, ObjRoundTripKeepsExactPositionsAndIdenticalFaces) {
   for (const TriMesh& mesh : {octahedron(), cube()}) {
     const TriMesh read = round_trip(mesh, "mesh.obj");
-    ASSERT_EQ(read.vertices.size(), mesh.vertices.size());
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-      for (int axis = 0; axis < 3; ++axis)
-        EXPECT_NEAR(read.vertices[v][axis], mesh.vertices[v][axis], 1e-6 * std::abs(mesh.vertices[v][axis]));
+    EXPECT_EQ(read.vertices, mesh.vertices);
     EXPECT_EQ(read.faces, mesh.faces);
   }
 }
@@ -300,6 +302,134 @@ TEST_F(MeshFiles, WriteRejectsAFaceIndexOutOfRange) {
   TriMesh mesh = cube();
   mesh.faces[5][1] = 8;
   EXPECT_THROW(write_mesh(mesh, path("mesh.stl")), std::runtime_error);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Far from the origin: what single precision would do, and how each format keeps the mesh
+
+/// A 20 × 20 grid of size 10 (spacing 0.5, a gentle bump), moved `offset` along every axis.
+TriMesh far_grid(double offset) {
+  TriMesh mesh;
+  constexpr int32_t kSide = 20;
+  for (int32_t r = 0; r <= kSide; ++r)
+    for (int32_t c = 0; c <= kSide; ++c)
+      mesh.vertices.push_back(Vec3(offset, offset, offset) +
+                              Vec3(0.5 * c, 0.5 * r, 0.3 * std::sin(0.4 * c) * std::cos(0.3 * r)));
+  for (int32_t r = 0; r < kSide; ++r)
+    for (int32_t c = 0; c < kSide; ++c) {
+      const int32_t v = r * (kSide + 1) + c;
+      mesh.faces.push_back({v, v + 1, v + kSide + 2});
+      mesh.faces.push_back({v, v + kSide + 2, v + kSide + 1});
+    }
+  return mesh;
+}
+
+std::string ply_header(const std::string& path) {
+  const std::string bytes = read_bytes(path);
+  return bytes.substr(0, bytes.find("end_header"));
+}
+
+TEST_F(MeshFiles, FloatRoundingCountsMergedVerticesAndFacesThatLoseTheirArea) {
+  EXPECT_FALSE(float_rounding(far_grid(0)).changes_mesh());
+  EXPECT_FALSE(float_rounding(far_grid(1e3)).changes_mesh());
+  const FloatRounding at_1e7 = float_rounding(far_grid(1e7));  // float steps of 1 there
+  EXPECT_GT(at_1e7.degenerate_faces, 0);
+  EXPECT_GT(at_1e7.merged_vertices, 0);
+  const FloatRounding at_1e9 = float_rounding(far_grid(1e9));  // steps of 64: one point
+  EXPECT_EQ(at_1e9.degenerate_faces, 800);
+  EXPECT_EQ(at_1e9.merged_vertices, 21 * 21 - 1);
+}
+
+TEST_F(MeshFiles, FloatRoundingCountsFacesFlattenedByAFarOffsetAlongOneAxis) {
+  TriMesh mesh = octahedron();  // of radius 1.3: float steps of 64 at 1e9 flatten it onto x = 1e9
+  for (Vec3& p : mesh.vertices) p.x() += 1e9;
+  const FloatRounding rounding = float_rounding(mesh);
+  EXPECT_EQ(rounding.degenerate_faces, 8);
+  EXPECT_THROW(write_mesh(mesh, path("flat.stl")), std::runtime_error);
+}
+
+TEST_F(MeshFiles, PlyStoresDoublePositionsOnlyWhereFloatWouldChangeTheMesh) {
+  write_mesh(far_grid(0), path("near.ply"));
+  EXPECT_NE(ply_header(path("near.ply")).find("property float x\n"), std::string::npos);
+  for (double offset : {1e7, 1e9}) {
+    const TriMesh mesh = far_grid(offset);
+    const TriMesh read = round_trip(mesh, "far.ply");
+    EXPECT_NE(ply_header(path("far.ply")).find("property double x\n"), std::string::npos) << offset;
+    EXPECT_EQ(read.vertices, mesh.vertices) << offset;
+    EXPECT_EQ(read.faces, mesh.faces) << offset;
+  }
+}
+
+TEST_F(MeshFiles, ObjKeepsFarPositionsExactly) {
+  for (double offset : {1e7, 1e9}) {
+    const TriMesh mesh = far_grid(offset);
+    const TriMesh read = round_trip(mesh, "far.obj");
+    EXPECT_EQ(read.vertices, mesh.vertices) << offset;
+    EXPECT_FALSE(float_rounding(read).changes_mesh() && !float_rounding(mesh).changes_mesh());
+  }
+}
+
+TEST_F(MeshFiles, StlRefusesAMeshThatFloatWouldChangeAndSaysToWritePlyOrObj) {
+  EXPECT_NO_THROW(write_mesh(far_grid(1e3), path("near.stl")));
+  for (double offset : {1e7, 1e9}) {
+    const std::string target = path("far.stl");
+    try {
+      write_mesh(far_grid(offset), target);
+      ADD_FAILURE() << "no error at " << offset;
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(target), std::string::npos) << message;
+      EXPECT_NE(message.find("write PLY or OBJ instead"), std::string::npos) << message;
+      EXPECT_NE(message.find("of 800 triangles degenerate, turned over or tilted"), std::string::npos) << message;
+    }
+    EXPECT_FALSE(fs::exists(target));
+  }
+}
+
+TEST_F(MeshFiles, PlyColoursAreUcharRedGreenBlueAndOptionalAlphaBeforeTheFloatProperties) {
+  TriMesh mesh = octahedron();
+  mesh.vertex_properties = {{"mean", {0.5f, -1.25f, 3e-8f, 0, 1e30f, -7}}};
+  WriteOptions options;
+  for (uint8_t v = 0; v < 6; ++v) options.colors.push_back({uint8_t(40 * v), uint8_t(255 - v), 7, uint8_t(200 + v)});
+  for (bool alpha : {false, true}) {
+    options.alpha = alpha;
+    write_mesh(mesh, path("colours.ply"), options);
+    const std::string header = ply_header(path("colours.ply"));
+    EXPECT_NE(header.find("property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n" +
+                          std::string(alpha ? "property uchar alpha\n" : "") + "property float mean\n"),
+              std::string::npos)
+        << header;
+    const TriMesh read = read_mesh(path("colours.ply"));
+    ASSERT_EQ(read.vertex_properties.size(), alpha ? 5u : 4u);
+    for (int c = 0; c < (alpha ? 4 : 3); ++c) {
+      EXPECT_EQ(read.vertex_properties[c].name, (std::array{"red", "green", "blue", "alpha"}[c]));
+      for (std::size_t v = 0; v < 6; ++v) EXPECT_EQ(read.vertex_properties[c].values[v], options.colors[v][c]);
+    }
+    EXPECT_EQ(read.vertex_properties.back().name, "mean");
+    EXPECT_EQ(read.vertex_properties.back().values, mesh.vertex_properties[0].values);
+    EXPECT_EQ(read.faces, mesh.faces);
+  }
+}
+
+TEST_F(MeshFiles, ObjColoursFollowEachVertexAndTheMaterialGoesToItsMtlTwin) {
+  WriteOptions options;
+  for (uint8_t v = 0; v < 8; ++v) options.colors.push_back({uint8_t(30 * v), 0, 255, 255});
+  options.material = "VesselMesh_curvature";
+  const TriMesh read = round_trip_with(cube(), "coloured.obj", options);
+  EXPECT_EQ(read.vertices, cube().vertices);
+  EXPECT_EQ(read.faces, cube().faces);
+  const std::string obj = read_bytes(path("coloured.obj"));
+  EXPECT_NE(obj.find("mtllib coloured.mtl\n"), std::string::npos);
+  EXPECT_NE(obj.find("usemtl VesselMesh_curvature\nf "), std::string::npos);
+  EXPECT_NE(obj.find(" 0.4706 0 1\n"), std::string::npos) << obj;  // vertex 4: 120/255
+  EXPECT_NE(read_bytes(path("coloured.mtl")).find("newmtl VesselMesh_curvature\n"), std::string::npos);
+}
+
+TEST_F(MeshFiles, WriteRejectsColoursThatAreNotOnePerVertex) {
+  WriteOptions options;
+  options.colors.resize(3);
+  for (const char* name : {"mesh.ply", "mesh.obj", "mesh.stl"})
+    EXPECT_THROW(write_mesh(cube(), path(name), options), std::runtime_error) << name;
 }
 
 // ---------------------------------------------------------------------------------------------------

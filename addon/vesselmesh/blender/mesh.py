@@ -89,3 +89,13 @@ def triangles(mesh):
     faces = np.empty(len(mesh.loops), dtype=np.int32)
     mesh.loops.foreach_get("vertex_index", faces)
     return compat.positions(mesh), faces.reshape(-1, 3)
+
+
+def point_colors(mesh, name=COLOR_ATTRIBUTE):
+    """(V,4) float32 scene-linear RGBA of a FLOAT_COLOR point attribute, or None."""
+    attribute = mesh.color_attributes.get(name)
+    if attribute is None or attribute.domain != "POINT":
+        return None
+    rgba = np.empty(4 * len(attribute.data), dtype=np.float32)
+    attribute.data.foreach_get("color", rgba)
+    return rgba.reshape(-1, 4)

@@ -4,6 +4,7 @@ import json
 import bpy
 
 from .operators import centerline_of, draw_colors, draw_settings, live
+from .radius_tool import VESSELMESH_OT_radius
 
 
 class VesselPanel:
@@ -33,9 +34,17 @@ class VIEW3D_PT_vesselmesh(VesselPanel, bpy.types.Panel):
         layout.label(text=centerline.name, icon="OUTLINER_OB_MESH")
         if centerline.vesselmesh.source:
             layout.label(text=bpy.path.basename(centerline.vesselmesh.source), icon="FILE")
+        row = layout.row()
+        row.menu("VESSELMESH_MT_presets", icon="PRESET")
+        row.operator("vesselmesh.generate", text="Regenerate" if surface else "Generate", icon="FILE_REFRESH")
+        if VESSELMESH_OT_radius.poll(context):
+            layout.operator(VESSELMESH_OT_radius.bl_idname, icon="FULLSCREEN_ENTER")
         layout.use_property_split = True
         draw_settings(layout, centerline.vesselmesh.settings)
-        layout.operator("vesselmesh.generate", text="Regenerate" if surface else "Generate", icon="FILE_REFRESH")
+        if surface is not None:
+            row = layout.row()
+            row.operator("vesselmesh.teaching_render", icon="RENDER_STILL")
+            row.operator("export_mesh.vesselmesh", text="Export", icon="EXPORT")
 
 
 class VIEW3D_PT_vesselmesh_colors(VesselPanel, bpy.types.Panel):
@@ -53,7 +62,15 @@ class VIEW3D_PT_vesselmesh_colors(VesselPanel, bpy.types.Panel):
         draw_colors(layout, centerline.vesselmesh.settings)
         state = surface.vesselmesh
         if state.color_map:
-            layout.label(text=f"{state.color_low:.4g} to {state.color_high:.4g}")
+            from ..core import colors, legend
+            from .paint import unit_of
+
+            measure = colors.MEASURES.get(state.color_measure)
+            if measure is not None:
+                unit, scale = unit_of(surface, context.scene)
+                lo, hi = legend.in_file_unit([state.color_low, state.color_high], measure.dimension, scale)
+                label = legend.unit_label(measure.dimension, unit)
+                layout.label(text=f"{lo:.3g} to {hi:.3g} {label}")
             layout.operator("vesselmesh.legend", icon="COLOR")
         else:
             layout.label(text="Regenerate with Curvature on to colour the surface")

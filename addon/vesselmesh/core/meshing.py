@@ -1,9 +1,11 @@
 """Centerline arrays in, surface arrays out: what the operators hand to the native core and get back."""
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from . import centerline as centerline_arrays
 from . import colors
 from .native import core
 
@@ -29,42 +31,91 @@ def read_centerline(path, scale=1.0):
             "edge_radius": scaled(data["edge_radius"])}
 
 
-def centerline_graph(points, edges, radius=None, edge_radius=None, default_radius=1.0):
-    """The core's graph of a centerline whose radii may be missing or unset.
+def typical_radius(data):
+    """The median radius of a centerline's arrays (positive ones), or None when it has none."""
+    values = data.get("radius") if data.get("radius") is not None else data.get("edge_radius")
+    if values is None:
+        return None
+    values = np.asarray(values)[np.asarray(values) > 0]
+    return float(np.median(values)) if len(values) else None
 
-    Without radii every point gets default_radius; so does every radius that is not positive (vertices
-    drawn in Blender's edit mode start at 0).
+
+def centerline_graph(points, edges, radius=None, edge_radius=None, default_radius=1.0, smooth=0):
+    """The core's graph of a centerline whose radii may be missing or unset, smoothed `smooth` rounds.
+
+    Without radii every point gets default_radius. A radius that is not positive (vertices added in
+    Blender's edit mode start at 0) comes from the neighbours along the edges (centerline.fill_point_radii),
+    or is default_radius where no point around has one.
     """
+    points = np.asarray(points, dtype=np.float64)
     if radius is None and edge_radius is None:
         radius = np.full(len(points), default_radius)
+    if radius is not None:
+        radius = centerline_arrays.fill_point_radii(points, edges, radius, default_radius)
+    if edge_radius is not None:
+        edge_radius = centerline_arrays.fill_edge_radii(points, edges, edge_radius, default_radius)
+    if smooth:
+        points, radius = centerline_arrays.smooth(points, edges, radius, smooth)
+    return core().Graph(points, edges, radius=radius, edge_radius=edge_radius)
 
-    def filled(values):
-        return None if values is None else np.where(values > 0, values, default_radius)
 
-    return core().Graph(points, edges, radius=filled(radius), edge_radius=filled(edge_radius))
+def describe_stats(stats):
+    """One line: the triangles and the time of each stage of the core, as stats gives them."""
+    stages = ", ".join(f"{s['stage']} {s['seconds']:.2f} s" for s in stats["stages"])
+    return f"{stats['triangles']:,} triangles in {stats['seconds']:.2f} s ({stages})"
 
 
 class MeshJob:
-    """One meshing of a graph by the core, in worker threads (the core releases the GIL while it works).
+    """One meshing by the core, in worker threads (the core releases the GIL while it works).
 
-    Once the surface exists, one worker lists its edges for Blender while the other estimates the
-    surface's curvature and colours it, when `color` asks for that: the measure, colour map and percentile
-    of colors.color_by (None for no curvature). Blender builds the mesh from the surface and its edges
-    while the curvature is still being estimated; the main thread then only hands Blender the colours.
+    `prepare()` (reading a file, building the graph) runs in the first worker, then the core builds the
+    surface, then that worker lists its edges for Blender while the other estimates the surface's
+    curvature and colours it, when `color` asks for that: (measure, colour map, percentile) as
+    colors.color_by takes them (None for no curvature). Blender builds the mesh from the surface and its
+    edges while the curvature is still being estimated; the main thread then only hands Blender the colours.
+
+    The job says where it is: stage() gives the index and name of the stage under way (STAGES), and
+    messages() the lines it has to tell since the last call (what was read, what the core built and how
+    long each stage took), for the status bar and for stdout in background mode.
 
     Until close(), the job holds the process's freed memory (vesselmesh_core.FreedMemoryHold): Blender's
     allocator would hand the pages of each big array back at once, and the core and Blender's mesh filling
     would fault in fresh ones, twice as slow.
     """
 
-    def __init__(self, graph, options, color):
+    STAGES = ("reading the centerline", "building the surface", "estimating curvature", "filling Blender's mesh")
+
+    def __init__(self, prepare, options, color):
         self._color = color
+        self._stage = 0
+        self._started = time.perf_counter()
+        self._lock = threading.Lock()
+        self._lines = []
         self._memory = core().FreedMemoryHold()
         pool = ThreadPoolExecutor(max_workers=2, thread_name_prefix="vesselmesh")
-        self._surface = pool.submit(core().mesh, graph, **options)
+        self._graph = pool.submit(self._prepare, prepare)
+        self._surface = pool.submit(self._mesh, options)
         self._edges = pool.submit(self._list_edges)
         self._curvature = pool.submit(self._estimate_curvature) if color is not None else None
         pool.shutdown(wait=False)
+
+    def _say(self, line):
+        with self._lock:
+            self._lines.append(line)
+
+    def _prepare(self, prepare):
+        start = time.perf_counter()
+        graph = prepare()
+        self._say(f"{len(graph.points):,} points, {len(graph.edges):,} edges ready in "
+                  f"{time.perf_counter() - start:.2f} s; building the surface")
+        self._stage = 1
+        return graph
+
+    def _mesh(self, options):
+        result = core().mesh(self._graph.result(), **options)
+        self._say("surface: " + describe_stats(result["stats"]))
+        self._stage = 2 if self._color is not None else 3
+        return result
 
     def _list_edges(self):
         result = self._surface.result()
@@ -76,10 +127,41 @@ class MeshJob:
         values = core().curvature(result["vertices"], result["faces"])
         seconds = time.perf_counter() - start
         measure = values[self._color[0]].astype(np.float64)  # as Blender's attribute reads back for a recolour
-        return values, seconds, colors.color_by(measure, *self._color)
+        coloring = colors.color_by(measure, *self._color[1:])
+        self._say(f"curvature and colours in {time.perf_counter() - start:.2f} s")
+        self._stage = 3
+        return values, seconds, coloring
 
     def _futures(self):
-        return [f for f in (self._surface, self._edges, self._curvature) if f is not None]
+        return [f for f in (self._graph, self._surface, self._edges, self._curvature) if f is not None]
+
+    def stage(self):
+        """(index, name) of the stage under way, of STAGES."""
+        return self._stage, self.STAGES[self._stage]
+
+    def seconds(self):
+        return time.perf_counter() - self._started
+
+    def messages(self):
+        """The lines the job has to tell since the last call."""
+        with self._lock:
+            lines, self._lines = self._lines, []
+        return lines
+
+    def wait(self, timeout):
+        """Waits up to timeout seconds for the job; True once it is done."""
+        deadline = time.perf_counter() + timeout
+        for future in self._futures():
+            left = deadline - time.perf_counter()
+            if left <= 0:
+                return self.done()
+            try:
+                future.exception(timeout=left)
+            except TimeoutError:
+                return False
+            except Exception:  # noqa: BLE001 (cancelled: done)
+                pass
+        return True
 
     def done(self):
         return all(f.done() for f in self._futures())
@@ -96,6 +178,10 @@ class MeshJob:
     def close(self):
         """Lets the allocator hand back the memory the job freed; once its results are in the scene."""
         self._memory.release()
+
+    def graph(self):
+        """Waits for the graph the job meshes. Raises what prepare raised (a bad file's InputError)."""
+        return self._graph.result()
 
     def surface(self):
         """Waits for the surface: vertices (V,3) float32 and faces (F,3) int32, C-contiguous (ready for

@@ -42,13 +42,31 @@ void binary_float(BufferedFile& out, float value) {
   out.little_endian(bits, sizeof bits);
 }
 
+/// A double as eight little-endian bytes.
+void binary_double(BufferedFile& out, double value) {
+  uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  out.little_endian(bits, sizeof bits);
+}
+
+/// The shortest decimal text that reads back as the same double, then `separator`.
+void shortest_decimal(BufferedFile& out, double value, char separator) {
+  char digits[40];
+  char* end = std::to_chars(digits, digits + sizeof digits - 1, value).ptr;
+  *end++ = separator;
+  out.text(std::string_view(digits, static_cast<std::size_t>(end - digits)));
+}
+
 /// Refuses meshes that would make a file read_mesh rejects, or that the writers cannot index safely.
-void check_writable(const TriMesh& mesh, const std::string& path) {
+void check_writable(const TriMesh& mesh, const std::string& path, const WriteOptions& options) {
   for (const VertexProperty& property : mesh.vertex_properties)
     if (property.values.size() != mesh.vertices.size())
       throw std::runtime_error("cannot write '" + path + "': vertex property '" + property.name + "' has " +
                                std::to_string(property.values.size()) + " values for " +
                                std::to_string(mesh.vertices.size()) + " vertices");
+  if (!options.colors.empty() && options.colors.size() != mesh.vertices.size())
+    throw std::runtime_error("cannot write '" + path + "': " + std::to_string(options.colors.size()) +
+                             " colours for " + std::to_string(mesh.vertices.size()) + " vertices");
   const auto vertex_count = static_cast<int64_t>(mesh.vertices.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int32_t v : mesh.faces[f])
@@ -58,22 +76,37 @@ void check_writable(const TriMesh& mesh, const std::string& path) {
                                  std::to_string(vertex_count) + " vertices");
 }
 
-void write_ply(const TriMesh& mesh, const std::string& path) {
+void write_ply(const TriMesh& mesh, const std::string& path, const WriteOptions& options) {
   for (const VertexProperty& property : mesh.vertex_properties)
     if (property.name.empty() || property.name.find_first_of(" \t\r\n") != std::string::npos)
       throw std::runtime_error("cannot write '" + path + "': vertex property name '" + property.name +
                                "' is empty or holds whitespace, which PLY headers cannot");
+  // Float is what every PLY reader takes; double only where float would change the mesh (Blender's
+  // PLY importer, MeshLab and the readers here take either).
+  const bool exact = float_rounding(mesh).changes_mesh();
+  const std::string coordinate = exact ? "double" : "float";
+  const bool colors = !options.colors.empty();
+  const int channels = colors ? (options.alpha ? 4 : 3) : 0;
   BufferedFile out(path);
   std::string header = "ply\nformat binary_little_endian 1.0\ncomment VesselMesh\nelement vertex " +
-                       std::to_string(mesh.vertices.size()) +
-                       "\nproperty float x\nproperty float y\nproperty float z\n";
+                       std::to_string(mesh.vertices.size()) + "\n";
+  for (const char* axis : {"x", "y", "z"}) header += "property " + coordinate + " " + axis + "\n";
+  for (int c = 0; c < channels; ++c)
+    header += std::string("property uchar ") + std::array{"red", "green", "blue", "alpha"}[c] + "\n";
   for (const VertexProperty& property : mesh.vertex_properties)
     header += "property float " + property.name + "\n";
   header += "element face " + std::to_string(mesh.faces.size()) +
             "\nproperty list uchar int vertex_indices\nend_header\n";
   out.text(header);
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    for (int axis = 0; axis < 3; ++axis) binary_float(out, static_cast<float>(mesh.vertices[v][axis]));
+    for (int axis = 0; axis < 3; ++axis) {
+      if (exact) {
+        binary_double(out, mesh.vertices[v][axis]);
+      } else {
+        binary_float(out, static_cast<float>(mesh.vertices[v][axis]));
+      }
+    }
+    for (int c = 0; c < channels; ++c) out.little_endian(options.colors[v][c], 1);
     for (const VertexProperty& property : mesh.vertex_properties) binary_float(out, property.values[v]);
   }
   for (const Tri& face : mesh.faces) {
@@ -83,14 +116,34 @@ void write_ply(const TriMesh& mesh, const std::string& path) {
   out.close();
 }
 
-void write_obj(const TriMesh& mesh, const std::string& path) {
+void write_mtl(const std::string& path, const std::string& material) {
   BufferedFile out(path);
-  for (const Vec3& p : mesh.vertices) {
-    out.text("v ");
-    out.decimal(static_cast<float>(p.x()), ' ');
-    out.decimal(static_cast<float>(p.y()), ' ');
-    out.decimal(static_cast<float>(p.z()), '\n');
+  out.text("# VesselMesh\nnewmtl " + material + "\nKa 0 0 0\nKd 1 1 1\nKs 0.2 0.2 0.2\nNs 50\nd 1\nillum 2\n");
+  out.close();
+}
+
+void write_obj(const TriMesh& mesh, const std::string& path, const WriteOptions& options) {
+  if (options.material.find_first_of(" \t\r\n") != std::string::npos)
+    throw std::runtime_error("cannot write '" + path + "': material name '" + options.material +
+                             "' holds whitespace, which OBJ cannot");
+  BufferedFile out(path);
+  out.text("# VesselMesh\n");
+  if (!options.material.empty()) {
+    const std::filesystem::path library = std::filesystem::path(path).replace_extension(".mtl");
+    write_mtl(library.string(), options.material);
+    out.text("mtllib " + library.filename().string() + "\n");
   }
+  const bool colors = !options.colors.empty();
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vec3& p = mesh.vertices[v];
+    out.text("v ");
+    shortest_decimal(out, p.x(), ' ');
+    shortest_decimal(out, p.y(), ' ');
+    shortest_decimal(out, p.z(), colors ? ' ' : '\n');
+    if (colors)
+      for (int c = 0; c < 3; ++c) out.decimal(options.colors[v][c] / 255.0, 4, c < 2 ? ' ' : '\n');
+  }
+  if (!options.material.empty()) out.text("usemtl " + options.material + "\n");
   for (const Tri& face : mesh.faces) {
     out.text("f ");
     out.decimal(face[0] + int64_t{1}, ' ');
@@ -103,6 +156,15 @@ void write_obj(const TriMesh& mesh, const std::string& path) {
 void write_stl(const TriMesh& mesh, const std::string& path) {
   if (mesh.faces.size() > std::numeric_limits<uint32_t>::max())
     throw std::runtime_error("cannot write '" + path + "': binary STL holds at most 2^32-1 triangles");
+  const FloatRounding rounding = float_rounding(mesh);
+  if (rounding.changes_mesh())
+    throw std::runtime_error(
+        "cannot write '" + path + "': STL stores coordinates in single precision, which would make " +
+        std::to_string(rounding.degenerate_faces) + " of " + std::to_string(mesh.faces.size()) +
+        " triangles degenerate, turned over or tilted" +
+        (rounding.merged_vertices > 0 ? " and merge " + std::to_string(rounding.merged_vertices) + " vertices" : "") +
+        " (the surface lies far from the origin for its size); write PLY or OBJ instead, which keep the "
+        "coordinates exact, or move the surface nearer the origin");
   BufferedFile out(path);
   // The header must not start with "solid", or readers may take the file for ASCII STL.
   std::string header = "VesselMesh binary STL";
@@ -772,16 +834,51 @@ TriMesh read_stl(std::string_view bytes, const std::string& path) {
 
 }  // namespace
 
-void write_mesh(const TriMesh& mesh, const std::string& path) {
+FloatRounding float_rounding(const TriMesh& mesh) {
+  constexpr double kCos30 = 0.8660254037844386;
+  using Key = std::array<uint32_t, 3>;
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const {
+      uint64_t h = key[0];
+      h = h * 0x9e3779b97f4a7c15ULL ^ key[1];
+      h = h * 0x9e3779b97f4a7c15ULL ^ key[2];
+      return static_cast<std::size_t>(h ^ h >> 29);
+    }
+  };
+  std::vector<Vec3> rounded(mesh.vertices.size());
+  std::unordered_map<Key, std::size_t, KeyHash> first;
+  first.reserve(mesh.vertices.size());
+  FloatRounding result;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    Key key;
+    for (int axis = 0; axis < 3; ++axis) {
+      const float value = static_cast<float>(mesh.vertices[v][axis]) + 0.0f;  // one zero, not two
+      std::memcpy(&key[axis], &value, sizeof value);
+      rounded[v][axis] = value;
+    }
+    const auto [it, inserted] = first.try_emplace(key, v);
+    if (!inserted && mesh.vertices[it->second] != mesh.vertices[v]) ++result.merged_vertices;
+  }
+  for (const Tri& f : mesh.faces) {
+    const Vec3 exact = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    if (exact == Vec3::Zero()) continue;  // degenerate as it is: float takes nothing from it
+    const Vec3 single = (rounded[f[1]] - rounded[f[0]]).cross(rounded[f[2]] - rounded[f[0]]);
+    // Lost, turned over, or tilted by more than 30° (a face flattened onto a plane of float steps).
+    if (single.dot(exact) <= kCos30 * single.norm() * exact.norm()) ++result.degenerate_faces;
+  }
+  return result;
+}
+
+void write_mesh(const TriMesh& mesh, const std::string& path, const WriteOptions& options) {
   const std::string extension = extension_of(path);
   if (extension != ".ply" && extension != ".obj" && extension != ".stl")
     throw std::runtime_error("cannot write '" + path + "': unknown mesh extension '" + extension +
                              "'; expected .ply, .obj or .stl");
-  check_writable(mesh, path);
+  check_writable(mesh, path, options);
   if (extension == ".ply") {
-    write_ply(mesh, path);
+    write_ply(mesh, path, options);
   } else if (extension == ".obj") {
-    write_obj(mesh, path);
+    write_obj(mesh, path, options);
   } else {
     write_stl(mesh, path);
   }

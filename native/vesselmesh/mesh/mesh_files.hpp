@@ -4,22 +4,51 @@
 // binary of either byte order, with faces of any size triangulated as fans; OBJ with v/vt/vn indices
 // and negative indices; STL binary and ascii, with coincident vertices welded exactly).
 
+#include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vesselmesh/mesh/tri_mesh.hpp"
 
 namespace vesselmesh {
 
+/// What single precision would do to a mesh's positions: the vertices that would land on another
+/// vertex's position, and the faces with an area that would lose it, turn over or tilt by more than 30°
+/// (their normal from the rounded positions no longer points about the way the exact one does, as when
+/// float steps flatten a small surface lying far out along one axis). A tree of size 10 lying 1e7 from
+/// the origin has some; at 1e9 every face is one.
+struct FloatRounding {
+  int64_t merged_vertices = 0;
+  int64_t degenerate_faces = 0;
+  bool changes_mesh() const { return merged_vertices > 0 || degenerate_faces > 0; }
+};
+FloatRounding float_rounding(const TriMesh& mesh);
+
+/// Besides the mesh's vertex properties, what write_mesh can store.
+struct WriteOptions {
+  /// Empty, or one 8-bit sRGB colour per vertex (red, green, blue, alpha): PLY `uchar red green blue`
+  /// (and `alpha` when `alpha` is set), OBJ `v x y z r g b` (in 0-1, as MeshLab and Blender read them).
+  std::vector<std::array<uint8_t, 4>> colors;
+  bool alpha = false;
+  /// OBJ: when not empty, a material of this name, written to the file's .mtl twin (white, so that the
+  /// vertex colours show as they are) and used by every face.
+  std::string material;
+};
+
 /// Writes by the lower-case extension:
-///  - .ply: binary little-endian; float x y z, then one float property per vertex property, in order;
+///  - .ply: binary little-endian; x y z as float, or as double where float would change the mesh
+///    (float_rounding); then the colours, then one float property per vertex property, in order;
 ///    faces as `list uchar int vertex_indices`.
-///  - .obj: `v x y z` with the shortest text that reads back as the same float; `f a b c`, 1-based.
-///  - .stl: binary; per triangle the unit normal from the vertex order (zero when degenerate).
-/// Positions are stored as float in every format. OBJ and STL cannot hold vertex properties and leave
-/// them out; STL does not share vertices (read_mesh welds them back).
+///  - .obj: `v x y z [r g b]` with the shortest text that reads back as the same double; `f a b c`, 1-based.
+///  - .stl: binary; per triangle the unit normal from the vertex order (zero when degenerate). STL
+///    holds only float positions: a mesh that float would change is refused, saying to write PLY or OBJ.
+/// OBJ and STL cannot hold vertex properties and leave them out; STL leaves colours out and does not
+/// share vertices (read_mesh welds them back).
 /// Throws std::runtime_error naming the path when the extension is unknown, a vertex property does not
-/// have one value per vertex, a face index is out of range, or the file cannot be written.
-void write_mesh(const TriMesh& mesh, const std::string& path);
+/// have one value per vertex, the colours are not one per vertex, a face index is out of range, an STL
+/// file would lose faces to float rounding, or the file cannot be written.
+void write_mesh(const TriMesh& mesh, const std::string& path, const WriteOptions& options = {});
 
 /// Reads .ply, .obj or .stl (by the lower-case extension).
 ///  - .ply: ascii, binary_little_endian, binary_big_endian; x y z of any numeric type; other scalar
