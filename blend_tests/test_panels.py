@@ -60,7 +60,9 @@ def test_the_sidebar_offers_presets_regenerate_settings_teaching_render_export_a
     colours = draw(panels.VIEW3D_PT_vesselmesh_colors, context)
     assert ("prop", "color_measure") in colours and ("operator", "vesselmesh.legend") in colours
     assert any(kind == "label" and text.endswith("1/mm") for kind, text in colours)  # the range in the file's unit
-    assert ("operator", "vesselmesh.check") in draw(panels.VIEW3D_PT_vesselmesh_stats, context)
+    stats = draw(panels.VIEW3D_PT_vesselmesh_stats, context)
+    assert ("operator", "vesselmesh.check") in stats
+    assert ("label", "Checked: closed, genus 0, no crossing") in stats  # the core's check of its own surface
 
 
 def test_in_edit_mode_the_sidebar_offers_the_radius_tool(project_data, panels):

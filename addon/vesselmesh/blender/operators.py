@@ -105,6 +105,9 @@ class MeshJobRunner:
         stats = json.loads(surface.vesselmesh.stats)
         self.report({"INFO"}, f"{surface.name}: {stats['triangles']:,} triangles in {stats['wall_seconds']:.2f} s "
                               f"(core {stats['seconds']:.2f} s)")
+        problem = stats.get("verified", {}).get("problem")
+        if problem:
+            self.report({"WARNING"}, f"{surface.name} fails its own check: {problem} (Check Surface shows more)")
         return {"FINISHED"}
 
 

@@ -93,6 +93,11 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
         col.label(text=f"{stats['wall_seconds']:.2f} s in all, core {stats['seconds']:.2f} s")
         for stage in stats["stages"]:
             col.label(text=f"    {stage['stage']}: {stage['seconds']:.3f} s, {stage['faces']:,} faces")
+        verified = stats.get("verified")
+        if verified:
+            col.label(text=f"Fails its own check: {verified['problem']}" if verified["problem"] else
+                      f"Checked: closed, genus {verified['genus']}"
+                      + (", no crossing" if verified["crossings_checked"] and not verified["crossing_pairs"] else ""))
         if stats.get("separated_points"):
             col.label(text=f"Crossing vessels moved apart: {stats['separated_points']:,} points, "
                            f"up to {stats['largest_separation']:.1f} radii")
