@@ -105,6 +105,16 @@ def test_the_default_colours_show_the_smaller_curvature_which_is_zero_along_stra
     assert trunk
 
 
+@pytest.mark.parametrize("scale", [0.001, 1.0])
+def test_shape_is_mean_curvature_times_radius_a_half_along_a_vessel_whatever_its_size(project_data, scale):
+    _, surface = import_file(project_data / "bifurcation.swc", scale=scale, color_measure="shape")
+    shape, mean = attribute(surface, "shape"), attribute(surface, "mean")
+    assert surface.vesselmesh.color_measure == "shape"
+    assert abs(np.median(shape) - 0.5) < 0.05  # the same number in metres and in millimetres
+    radius = shape / mean
+    assert 0.55 * scale * 0.99 < np.median(radius) < 1.0 * scale * 1.01  # the file's radii, in scene units
+
+
 def test_import_colours_by_the_measure_map_and_range_it_was_given(project_data, colors):
     _, surface = import_file(project_data / "bifurcation.swc", color_measure="rms", colormap="rdbu", percentile=10)
     state = surface.vesselmesh

@@ -14,6 +14,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/error.hpp"
+#include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
 #include "vesselmesh/mesh/mesh_files.hpp"
@@ -303,7 +304,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "(counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
       "(counts and per-stage times) and curvature (with curvature=True: k1, k2, mean, gaussian, rms as (V,)\n"
-      "float32 arrays, 1/length, convex positive; else empty). method: 'curvature', 'uniform' or "
+      "float32 arrays, 1/length, convex positive, and radius, the local tube radius; else empty). method: 'curvature', 'uniform' or "
       "'dihedral';\n"
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
       "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
@@ -340,8 +341,26 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         return property_dict(properties);
       },
       py::arg("vertices"), py::arg("faces"),
-      "Per-vertex curvature of a surface by 2-ring quadratic fitting: {name: (V,) float32} for k1, k2, mean,\n"
+      "Per-vertex curvature of a surface by 2-ring quadric fitting: {name: (V,) float32} for k1, k2, mean,\n"
       "gaussian and rms (1/length, convex positive for faces counter-clockwise from outside).");
+
+  m.def(
+      "local_radius",
+      [](const Points& points, const CenterlineGraph& graph) {
+        if (points.ndim() != 2 || points.shape(1) != 3) throw InputError("arrays", "", "points must have shape (N, 3)");
+        std::vector<Vec3> p(points.shape(0));
+        std::memcpy(p.data(), points.data(), sizeof(double) * 3 * p.size());
+        std::vector<double> radius;
+        {
+          py::gil_scoped_release release;
+          radius = local_radius(p, RoundCones(graph));
+        }
+        return to_array(radius.data(), {static_cast<py::ssize_t>(radius.size())});
+      },
+      py::arg("points"), py::arg("graph"),
+      "(N,) float64: the radius of the graph's tubes nearest each point (of the point of the union of round\n"
+      "cones closest to it). Curvature times it shows shape whatever a vessel's size: a straight tube's mean\n"
+      "curvature times its radius is 1/2.");
 
   m.def(
       "edges",

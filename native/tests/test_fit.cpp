@@ -72,6 +72,24 @@ TEST(RoundCones, DirectionIsTheGradientOfTheDistanceAtEveryScale) {
   }
 }
 
+TEST(RoundCones, LocalRadiusIsTheRadiusOfTheNearestTubeAtEveryScale) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    // A trunk of radius 2 to 1 along x, and a side branch from its middle narrowing from 1.5 to 0.25.
+    CenterlineData d;
+    d.points = {Vec3(0, 0, 0) * scale, Vec3(10, 0, 0) * scale, Vec3(20, 0, 0) * scale, Vec3(10, 8, 0) * scale};
+    d.radius = {2 * scale, 1.5 * scale, 1 * scale, 0.25 * scale};
+    d.edges = {{0, 1}, {1, 2}, {1, 3}};
+    const CenterlineGraph g = build_graph(d);
+    const RoundCones cones(g);
+    const std::vector<double> r =
+        local_radius({Vec3(5, 1.75, 0) * scale, Vec3(15, 0, -1.25) * scale, Vec3(10, 6, 0.25) * scale}, cones);
+    // On a cone whose radius falls a tenth per unit the touching sphere sits a little behind the point.
+    EXPECT_NEAR(r[0] / scale, 1.75, 0.02) << "scale " << scale;
+    EXPECT_NEAR(r[1] / scale, 1.25, 0.02) << "scale " << scale;
+    EXPECT_NEAR(r[2] / scale, 1.5 - 0.75 * 1.25, 0.02) << "scale " << scale;
+  }
+}
+
 TEST(Fit, CrotchOfABifurcationComesOntoTheTubesAtEveryScale) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::bifurcation(scale));

@@ -152,6 +152,9 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     start = Clock::now();
     for (VertexProperty& p : curvature_properties(estimate_curvature(result.mesh)))
       result.mesh.vertex_properties.push_back(std::move(p));
+    if (!cones) cones.emplace(*centerline);
+    const std::vector<double> radius = local_radius(result.mesh.vertices, *cones);
+    result.mesh.vertex_properties.push_back({"radius", std::vector<float>(radius.begin(), radius.end())});
     record("curvature", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }

@@ -30,7 +30,7 @@ struct MeshOptions {
   Caps caps = Caps::flat;
   SubdivisionOptions subdivision;
   Fit fit = Fit::onto;     ///< which vertices come onto the input's tubes (fit/fit.hpp)
-  bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms as vertex properties
+  bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms and the local tube radius as vertex properties
   /// Throw SizeLimitError, before the work, rather than build a surface with more triangles than this
   /// (counting every triangle of the last level, which the adaptive methods also compute).
   int64_t max_triangles = 50'000'000;

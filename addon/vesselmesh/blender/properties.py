@@ -31,6 +31,9 @@ MEASURE_HELP = {
     "k1": "The larger principal curvature, about 1/radius: shows calibre",
     "rms": "Root mean square of k1 and k2: how strongly the wall curves, whatever the direction (calibre "
            "mostly)",
+    "shape": "Mean curvature times the vessel's radius there: 0.5 along a straight vessel of any size; higher "
+             "on the outside of bends, on bulges and at ends, lower on the inside of bends, at narrowings and "
+             "forks. Shows shape rather than calibre",
 }
 
 

@@ -27,6 +27,7 @@ MEASURES = {
     "gaussian": Measure("Gaussian curvature", "K", -2),
     "k1": Measure("Largest curvature", "k1", -1),
     "rms": Measure("RMS curvature", "rms", -1),
+    "shape": Measure("Shape: mean curvature × radius", "H·r", 0),
 }
 
 # A signed measure gets the diverging map only when its smaller side reaches this share of the larger

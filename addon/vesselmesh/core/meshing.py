@@ -125,6 +125,9 @@ class MeshJob:
         result = self._surface.result()
         start = time.perf_counter()
         values = core().curvature(result["vertices"], result["faces"])
+        # Shape, whatever the size: the mean curvature times the radius of the tubes there (1/2 on a straight vessel).
+        values["shape"] = (values["mean"] * core().local_radius(result["vertices"], self._graph.result())
+                           ).astype(np.float32)
         seconds = time.perf_counter() - start
         measure = values[self._color[0]].astype(np.float64)  # as Blender's attribute reads back for a recolour
         coloring = colors.color_by(measure, *self._color[1:])

@@ -198,15 +198,27 @@ def test_radius_error_is_small_on_a_tube_and_nan_on_its_caps(project_data):
     assert np.nanmedian(np.abs(error)) < 0.05
 
 
-def test_mesh_with_curvature_returns_the_five_measures_of_a_tube(project_data):
+def test_mesh_with_curvature_returns_the_five_measures_of_a_tube_and_its_radius(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     surface = vm.mesh(graph, levels=3, curvature=True)
     k = surface["curvature"]
-    assert sorted(k) == ["gaussian", "k1", "k2", "mean", "rms"]
+    assert sorted(k) == ["gaussian", "k1", "k2", "mean", "radius", "rms"]
     assert all(len(values) == len(surface["vertices"]) for values in k.values())
     assert np.all(k["k1"] >= k["k2"])
     assert np.median(k["mean"]) > 0  # a vessel is convex across its axis
+    assert np.allclose(k["radius"], vm.local_radius(surface["vertices"], graph), rtol=1e-6)
     assert vm.mesh(graph, levels=1)["curvature"] == {}
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e3])
+def test_mean_curvature_times_the_local_radius_is_a_half_on_a_tube_of_any_size(scale):
+    points = np.c_[np.linspace(0, 40, 21), np.zeros(21), np.zeros(21)] * scale
+    graph = vm.Graph(points, np.c_[np.arange(20), np.arange(1, 21)], radius=np.full(21, 2.0 * scale))
+    surface = vm.mesh(graph, curvature=True, method="uniform")
+    middle = np.abs(surface["vertices"][:, 0] / scale - 20) < 10  # away from the caps
+    shape = surface["curvature"]["mean"][middle] * surface["curvature"]["radius"][middle]
+    assert np.allclose(surface["curvature"]["radius"][middle], 2.0 * scale, rtol=1e-6)
+    assert abs(np.median(shape) - 0.5) < 0.02
 
 
 @pytest.mark.parametrize("method", ["curvature", "dihedral"])
@@ -235,7 +247,7 @@ def test_curvature_of_given_arrays_matches_the_mesh_run(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     surface = vm.mesh(graph, levels=2, curvature=True)
     again = vm.curvature(surface["vertices"], surface["faces"])
-    assert sorted(again) == sorted(surface["curvature"])
+    assert sorted(again) == sorted(set(surface["curvature"]) - {"radius"})  # the surface alone has no tubes
     for name, values in again.items():
         assert values.dtype == np.float32
         np.testing.assert_array_equal(values, surface["curvature"][name])

@@ -9,6 +9,7 @@
 #include "vesselmesh/frames/frames.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/graph/union_find.hpp"
+#include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
 
@@ -177,6 +178,16 @@ ConeDistance RoundCones::nearest(const Vec3& p, int32_t* hint, bool exact_inside
                 });
   if (hint != nullptr) *hint = best_cone;
   return best;
+}
+
+std::vector<double> local_radius(const std::vector<Vec3>& points, const RoundCones& cones) {
+  std::vector<double> radius(points.size(), 0.0);
+  if (cones.size() == 0) return radius;
+  parallel_for(points.size(), [&](std::size_t begin, std::size_t end) {
+    int32_t hint = -1;  // consecutive points are mostly near each other
+    for (std::size_t i = begin; i < end; ++i) radius[i] = cones.nearest(points[i], &hint).radius;
+  });
+  return radius;
 }
 
 ConeDistance RoundCones::deepest(const Vec3& p, double depth) const {

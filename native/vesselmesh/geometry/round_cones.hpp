@@ -69,6 +69,11 @@ std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g);
 /// Signed distance from `p` to the surface of round cone `k`.
 ConeDistance cone_distance(const RoundCone& k, const Vec3& p);
 
+/// The radius of the tubes at each point: that of the nearest cone's sphere touching the tubes' surface
+/// where the point is closest (ConeDistance::radius); 0 without cones. What curvature is multiplied by to
+/// show a vessel's shape whatever its size: a straight tube has mean curvature × radius 1/2.
+std::vector<double> local_radius(const std::vector<Vec3>& points, const RoundCones& cones);
+
 class RoundCones {
  public:
   explicit RoundCones(const CenterlineGraph& g);
