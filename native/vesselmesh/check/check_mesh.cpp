@@ -1,6 +1,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -171,11 +172,16 @@ IntersectionReport find_self_intersections(const TriMesh& mesh, const Centerline
   // Pairs sharing an edge or a vertex need no special case: the predicate knows shared corners lie on
   // the other plane, so such pairs count only when they fold over or cross away from what they share.
   std::vector<std::array<int32_t, 2>> hits;
-  Bvh(boxes).for_each_overlapping_pair([&](int32_t i, int32_t j) {
-    const int32_t f = face_of[i], g = face_of[j];
-    if (triangle_interiors_meet(corners(mesh.vertices, mesh.faces[f]), corners(mesh.vertices, mesh.faces[g])))
-      hits.push_back({std::min(f, g), std::max(f, g)});
-  });
+  std::mutex lock;  // hits are rare: the threads rarely wait here
+  Bvh(boxes).for_each_overlapping_pair(
+      [&](int32_t i, int32_t j) {
+        const int32_t f = face_of[i], g = face_of[j];
+        if (triangle_interiors_meet(corners(mesh.vertices, mesh.faces[f]), corners(mesh.vertices, mesh.faces[g]))) {
+          const std::lock_guard<std::mutex> guard(lock);
+          hits.push_back({std::min(f, g), std::max(f, g)});
+        }
+      },
+      true);
   std::sort(hits.begin(), hits.end());
 
   IntersectionReport r;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vesselmesh/centerline.hpp"
+#include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
 
@@ -38,9 +39,10 @@ class Bvh {
  public:
   explicit Bvh(const std::vector<Box>& boxes);
 
-  /// Calls f(i, j) once for every unordered pair of distinct items whose boxes overlap.
+  /// Calls f(i, j) once for every unordered pair of distinct items whose boxes overlap. With `parallel`,
+  /// the pairs are shared out over the machine's cores, and f is called from several threads at once.
   template <class F>
-  void for_each_overlapping_pair(F&& f) const;
+  void for_each_overlapping_pair(F&& f, bool parallel = false) const;
 
   /// Depth-first walk that enters the nodes and visits the items whose box has bound(box) <= limit,
   /// the child with the smaller bound first. `limit` is read again at every step, so that `visit` may
@@ -55,6 +57,10 @@ class Bvh {
     int32_t second = -1;         ///< the second child; -1 for a leaf (the first child is the next node)
   };
   int32_t build(const std::vector<Box>& boxes, const std::vector<Vec3>& centres, int32_t begin, int32_t end);
+  /// One step of the walk over the pairs of items under nodes a and b (a == b: the pairs within a): calls f
+  /// on the overlapping pairs of two leaves, or hands `split` the node pairs to go on with.
+  template <class F, class Split>
+  void step(int32_t a, int32_t b, F& f, Split&& split) const;
   bool leaf(const Node& n) const { return n.second < 0; }
 
   std::vector<int32_t> items_;  ///< item ids in leaf order
@@ -62,40 +68,64 @@ class Bvh {
   std::vector<Node> nodes_;
 };
 
-template <class F>
-void Bvh::for_each_overlapping_pair(F&& f) const {
-  if (nodes_.empty()) return;
-  auto leaf_pairs = [&](const Node& a, const Node& b) {
-    for (int32_t i = a.begin; i < a.end; ++i)
-      for (int32_t j = (&a == &b ? i + 1 : b.begin); j < b.end; ++j)
+template <class F, class Split>
+void Bvh::step(int32_t a, int32_t b, F& f, Split&& split) const {
+  const Node& na = nodes_[a];
+  const Node& nb = nodes_[b];
+  auto leaf_pairs = [&]() {
+    for (int32_t i = na.begin; i < na.end; ++i)
+      for (int32_t j = (a == b ? i + 1 : nb.begin); j < nb.end; ++j)
         if (boxes_[i].overlaps(boxes_[j])) f(items_[i], items_[j]);
   };
-  std::vector<std::pair<int32_t, int32_t>> stack = {{0, 0}};
-  while (!stack.empty()) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    const Node& na = nodes_[a];
-    const Node& nb = nodes_[b];
-    if (a == b) {
-      if (leaf(na)) {
-        leaf_pairs(na, na);
-      } else {
-        stack.push_back({a + 1, a + 1});
-        stack.push_back({na.second, na.second});
-        stack.push_back({a + 1, na.second});
-      }
-    } else if (na.box.overlaps(nb.box)) {
-      if (leaf(na) && leaf(nb)) {
-        leaf_pairs(na, nb);
-      } else if (leaf(nb) || (!leaf(na) && na.end - na.begin >= nb.end - nb.begin)) {
-        stack.push_back({a + 1, b});
-        stack.push_back({na.second, b});
-      } else {
-        stack.push_back({a, b + 1});
-        stack.push_back({a, nb.second});
-      }
+  if (a == b) {
+    if (leaf(na)) {
+      leaf_pairs();
+    } else {
+      split(a + 1, a + 1);
+      split(na.second, na.second);
+      split(a + 1, na.second);
+    }
+  } else if (na.box.overlaps(nb.box)) {
+    if (leaf(na) && leaf(nb)) {
+      leaf_pairs();
+    } else if (leaf(nb) || (!leaf(na) && na.end - na.begin >= nb.end - nb.begin)) {
+      split(a + 1, b);
+      split(na.second, b);
+    } else {
+      split(a, b + 1);
+      split(a, nb.second);
     }
   }
+}
+
+template <class F>
+void Bvh::for_each_overlapping_pair(F&& f, bool parallel) const {
+  if (nodes_.empty()) return;
+  using Pair = std::pair<int32_t, int32_t>;
+  auto walk = [&](std::vector<Pair> stack) {
+    while (!stack.empty()) {
+      const auto [a, b] = stack.back();
+      stack.pop_back();
+      step(a, b, f, [&](int32_t c, int32_t d) { stack.push_back({c, d}); });
+    }
+  };
+  if (!parallel) {
+    walk({{0, 0}});
+    return;
+  }
+  // Breadth first down to a few hundred node pairs (on one thread), then each one's walk is a task.
+  std::vector<Pair> frontier = {{0, 0}};
+  for (int round = 0; round < 16 && !frontier.empty() && frontier.size() < 256; ++round) {
+    std::vector<Pair> next;
+    for (const auto& [a, b] : frontier) step(a, b, f, [&](int32_t c, int32_t d) { next.push_back({c, d}); });
+    frontier = std::move(next);
+  }
+  parallel_for(
+      frontier.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) walk({frontier[k]});
+      },
+      1);
 }
 
 template <class Bound, class Visit>
