@@ -190,8 +190,10 @@ TEST(Cli, MeshFitsTheSurfaceToTheTubesUnlessToldNotTo) {
     for (const auto& stage : stats["stages"]) names.push_back(stage["stage"]);
     return names;
   };
-  EXPECT_EQ(stages(""), (std::vector<std::string>{"separate", "tile", "triangulate", "subdivide", "fit", "verify"}));
-  EXPECT_EQ(stages("--fit none"), (std::vector<std::string>{"separate", "tile", "triangulate", "subdivide", "verify"}));
+  EXPECT_EQ(stages(""),
+            (std::vector<std::string>{"separate", "tile", "triangulate", "subdivide", "round", "fit", "verify"}));
+  EXPECT_EQ(stages("--fit none"),
+            (std::vector<std::string>{"separate", "tile", "triangulate", "subdivide", "round", "verify"}));
 }
 
 TEST(Cli, MeshMovesCrossingVesselsApartUnlessToldToKeepThem) {

@@ -222,7 +222,7 @@ TEST(Pipeline, StatsCountEveryStage) {
   o.subdivision.method = Refinement::uniform;
   o.curvature = true;
   const MeshResult r = mesh_centerline(g, o);
-  ASSERT_EQ(r.stages.size(), 7u);  // separate, tile, triangulate, subdivide, fit, curvature, verify
+  ASSERT_EQ(r.stages.size(), 8u);  // separate, tile, triangulate, subdivide, round, fit, curvature, verify
   EXPECT_EQ(r.stages[0].stage, "separate");
   EXPECT_EQ(r.stages[2].faces * 16, r.stages[3].faces);  // two uniform levels
   EXPECT_EQ(r.stages.back().faces, static_cast<int64_t>(r.mesh.faces.size()));

@@ -9,6 +9,7 @@
 
 #include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/error.hpp"
+#include "vesselmesh/round/round.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -139,6 +140,10 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.tagged = std::move(subdivided.tagged);
   record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
+  start = Clock::now();
+  result.rounded_vertices = round_tubes(result.mesh).moved;
+  record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
+         static_cast<int64_t>(result.mesh.faces.size()));
   if (options.fit != Fit::none) {
     start = Clock::now();
     if (!cones) cones.emplace(*centerline);
@@ -177,6 +182,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["separated_points"] = result.separated_points;
   j["largest_separation"] = result.largest_separation;
   j["crossings_left"] = result.crossings_left;
+  j["rounded_vertices"] = result.rounded_vertices;
   j["fitted_vertices"] = result.fitted_vertices;
   j["parted_vertices"] = result.parted_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);

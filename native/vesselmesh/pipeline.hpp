@@ -1,7 +1,8 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
 //   graph → separate (crossing vessels) → sample → frames → tile (base mesh) → triangulate → subdivide
-//   (uniform or adaptive, onto the Loop limit surface) → fit (onto the input's tubes) [→ curvature]
+//   (uniform or adaptive, onto the Loop limit surface) → round (tubes) → fit (onto the input's tubes)
+//   [→ curvature] → verify
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>
@@ -69,6 +70,7 @@ struct MeshResult {
   int64_t separated_points = 0;   ///< centerline points the separate stage moved
   double largest_separation = 0;  ///< its largest move, relative to the point's radius
   int64_t crossings_left = 0;     ///< crossing edge pairs it left
+  int64_t rounded_vertices = 0;   ///< vertices the round stage moved onto their tube's circle
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube
   Verification verification;

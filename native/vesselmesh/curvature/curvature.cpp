@@ -39,13 +39,17 @@ std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
 ///   F(u, v, w) = a·u² + b·uv + c·v² + d·u + e·v + f·w² + g·uw + h·vw − w = 0,
 /// to the points, each weighted by exp(−ρ²/2h²) with ρ its distance from the normal axis: c = (a..h).
 /// Unlike a height function w(u, v), which reads a circle sampled 22.5° apart 10 % too tight, a quadric
-/// holds spheres and cylinders exactly and a torus to second order (docs/pipeline.md, curvature). nullopt
-/// for fewer than 8 points or a rank-deficient system.
+/// holds spheres and cylinders exactly and a torus to second order (docs/pipeline.md, curvature). Where the
+/// points lie nearly in a plane the w terms (f, g, h) are undetermined; a small penalty on them makes the
+/// fit there the height function's, continuously, rather than noise-driven. nullopt for fewer than 8 points
+/// or a rank-deficient system.
 std::optional<Eigen::Matrix<double, 8, 1>> fit_quadric(const std::vector<Vec3>& points, double h2) {
+  constexpr double kPenalty = 1e-6;  // square root of the weight of f = g = h = 0, against unit-weight points
   const Eigen::Index n = static_cast<Eigen::Index>(points.size());
   if (n < 8) return std::nullopt;
-  Eigen::Matrix<double, Eigen::Dynamic, 8> a(n, 8);
-  Eigen::VectorXd w(n);
+  Eigen::Matrix<double, Eigen::Dynamic, 8> a = Eigen::Matrix<double, Eigen::Dynamic, 8>::Zero(n + 3, 8);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n + 3);
+  for (int k = 0; k < 3; ++k) a(n + k, 5 + k) = kPenalty;
   for (Eigen::Index j = 0; j < n; ++j) {
     const Vec3& p = points[j];
     const double weight = std::sqrt(std::exp(-0.5 * (p.x() * p.x() + p.y() * p.y()) / h2));

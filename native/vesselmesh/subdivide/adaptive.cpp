@@ -13,21 +13,25 @@ namespace {
 
 /// The uniform levels 0..N of the base mesh, faces only (level k + 1 numbers its faces and vertices as
 /// loop_subdivide documents, so face f of level k has children 4f..4f+3 and keeps its vertex ids), and
-/// the limit position of every vertex of level N, which includes every vertex of the coarser levels.
+/// the limit position (and vertex properties) of every vertex of level N, which includes every vertex of
+/// the coarser levels.
 struct Hierarchy {
   std::vector<std::vector<Tri>> faces;
   std::vector<Vec3> limit;
+  std::vector<VertexProperty> properties;
 };
 
 Hierarchy uniform_hierarchy(const TriMesh& base, int levels) {
   Hierarchy h;
-  TriMesh m{base.vertices, base.faces, {}};
+  TriMesh m = base;
   h.faces.push_back(m.faces);
   for (int k = 0; k < levels; ++k) {
     m = k + 1 < levels ? loop_subdivide(m) : loop_subdivide_to_limit(m);
     h.faces.push_back(m.faces);
   }
-  h.limit = levels > 0 ? std::move(m.vertices) : loop_limit(m).vertices;
+  if (levels == 0) m = loop_limit(m);
+  h.limit = std::move(m.vertices);
+  h.properties = std::move(m.vertex_properties);
   return h;
 }
 
@@ -122,10 +126,13 @@ class Forest {
     for (const Tri& t : out.mesh.faces)
       for (int32_t v : t) used[v] = 1;
     std::vector<int32_t> local(h_.limit.size(), -1);
+    for (const VertexProperty& p : h_.properties) out.mesh.vertex_properties.push_back({p.name, {}});
     for (std::size_t v = 0; v < local.size(); ++v)
       if (used[v]) {
         local[v] = static_cast<int32_t>(out.mesh.vertices.size());
         out.mesh.vertices.push_back(h_.limit[v]);
+        for (std::size_t k = 0; k < h_.properties.size(); ++k)
+          out.mesh.vertex_properties[k].values.push_back(h_.properties[k].values[v]);
       }
     for (Tri& t : out.mesh.faces)
       for (int32_t& v : t) v = local[v];

@@ -54,7 +54,7 @@ void validate(const SubdivisionOptions& options);
 
 /// `options.levels` levels of (adaptive) Loop subdivision of a closed or open triangle mesh, with every
 /// vertex moved to the limit surface. Refinement::uniform gives loop_limit(loop_subdivide(base, levels)).
-/// The base mesh's vertex properties are not carried.
+/// The base mesh's vertex properties are carried with the same masks as the positions.
 ///
 /// Throws std::invalid_argument for the options validate() rejects and for the meshes loop_subdivide
 /// rejects.

@@ -641,32 +641,34 @@ class Tiler {
   /// `axis`, the direction the tube really runs (the polyline's) on a coarse or jagged centerline: each
   /// corner is pushed out to the radius from the axis line rather than from the centre, or the tube
   /// would be too thin by the cosine of the lean (capped at twice the radius, a 60° lean).
-  int32_t add_section(const Section& s, const Vec3& axis) {
+  /// `weight`: 1 for a tube's sections, 0 for a joint patch's squares (TubeAxis).
+  int32_t add_section(const Section& s, const Vec3& axis, double weight) {
     const int32_t first = static_cast<int32_t>(mesh_.vertices.size());
     for (int k = 0; k < 4; ++k) {
       const Vec3 offset = s.corner(k, scale()) - s.center;
       const double along = offset.normalized().dot(axis);
       mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
+      mesh_.axes.push_back({s.center - mesh_.vertices.back(), s.radius, weight});
     }
     if (++mesh_.sections > opt_.max_sections)
       throw SizeLimitError("more than " + std::to_string(opt_.max_sections) + " sections");
     return first;
   }
 
-  int32_t add_section(const Section& s) { return add_section(s, s.normal); }
+  int32_t add_square(const Section& s) { return add_section(s, s.normal, 0.0); }
 
   /// The patch's vertex ids for the square of end `e`, corners counter-clockwise about its normal.
   /// A shared square's corners are made once; seen from the branch's end they run the other way.
   std::array<int32_t, 4> square_vertices(const End& e) {
     if (kind_[e.branch] != Kind::shared) {
-      const int32_t first = add_section(e.square);
+      const int32_t first = add_square(e.square);
       return {first, first + 1, first + 2, first + 3};
     }
     int32_t& first = shared_vertex_[e.branch];
     if (first < 0) {
       Section from_start = e.square;
       if (!e.at_start) from_start.normal = -from_start.normal;
-      first = add_section(from_start);
+      first = add_square(from_start);
     }
     if (e.at_start) return {first, first + 1, first + 2, first + 3};
     return {first, first + 3, first + 2, first + 1};
@@ -741,6 +743,7 @@ class Tiler {
       for (const Vec3& r : p.rim) {
         id.push_back(static_cast<int32_t>(mesh_.vertices.size()));
         mesh_.vertices.push_back(r);
+        mesh_.axes.emplace_back();
       }
       for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
       ++mesh_.joints;
@@ -908,7 +911,9 @@ class Tiler {
         // The tail square runs counter-clockwise about its outward normal, against the travel.
         for (int j = 0; j < 4; ++j) ids[i][j] = tail->first_vertex + ((k - j) % 4 + 4) % 4;
       } else {
-        const int32_t first = add_section(sections[i], axis[i]);
+        // A terminal's end section, whose corners the flat cap joins, keeps the cap's shape.
+        const bool cap = !ring && (i == 0 || i == m);
+        const int32_t first = add_section(sections[i], axis[i], cap ? 0.0 : 1.0);
         for (int j = 0; j < 4; ++j) ids[i][j] = first + j;
       }
     }
@@ -952,9 +957,11 @@ class Tiler {
       if (new_id[v] < 0) continue;
       new_id[v] = next;
       mesh_.vertices[next] = mesh_.vertices[v];
+      mesh_.axes[next] = mesh_.axes[v];
       ++next;
     }
     mesh_.vertices.resize(next);
+    mesh_.axes.resize(next);
     for (Quad& q : mesh_.quads)
       for (int32_t& v : q) v = new_id[v];
     for (Tri& t : mesh_.triangles)
@@ -963,6 +970,17 @@ class Tiler {
 };
 
 }  // namespace
+
+std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& axes) {
+  std::vector<VertexProperty> out;
+  for (const std::string& name : kTubeAxisNames) out.push_back({name, std::vector<float>(axes.size())});
+  for (std::size_t v = 0; v < axes.size(); ++v) {
+    for (int k = 0; k < 3; ++k) out[k].values[v] = static_cast<float>(axes[v].offset[k]);
+    out[3].values[v] = static_cast<float>(axes[v].radius);
+    out[4].values[v] = static_cast<float>(axes[v].weight);
+  }
+  return out;
+}
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options) {
   return Tiler(graph, options).run();

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -32,8 +33,26 @@ struct TileOptions {
   int64_t max_sections = std::numeric_limits<int64_t>::max();
 };
 
+/// Where a base vertex's tube is round: the axis point of its section, the radius the surface should have
+/// there, and how much of the tube it is (1 for the sections of a tube, 0 for a joint patch's squares and a
+/// terminal's end section, where the cap joins), which Loop subdivision blends like positions
+/// (round/round.hpp).
+struct TubeAxis {
+  Vec3 offset = Vec3::Zero();  ///< from the vertex to its section's (control) centre
+  double radius = 0;
+  double weight = 0;
+};
+
+/// The names of the vertex properties that carry TubeAxis through subdivision: offset x, y, z, radius, weight.
+inline const std::array<std::string, 5> kTubeAxisNames = {"tube_axis_x", "tube_axis_y", "tube_axis_z",
+                                                          "tube_radius", "tube_weight"};
+
+/// The axes as those vertex properties.
+std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& axes);
+
 struct BaseMesh {
   std::vector<Vec3> vertices;
+  std::vector<TubeAxis> axes;                 ///< one per vertex
   std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
   std::vector<Tri> triangles;                 ///< joint patches
   int64_t sections = 0;                       ///< cross-sections, joint squares included

@@ -11,6 +11,7 @@ TriMesh triangulate(const BaseMesh& base) {
     mesh.faces.push_back({q[0], q[2], q[3]});
   }
   mesh.faces.insert(mesh.faces.end(), base.triangles.begin(), base.triangles.end());
+  mesh.vertex_properties = tube_axis_properties(base.axes);
   return mesh;
 }
 

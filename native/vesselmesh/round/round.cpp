@@ -1,0 +1,37 @@
+#include "vesselmesh/round/round.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "vesselmesh/parallel.hpp"
+
+namespace vesselmesh {
+
+GuardedMoves round_tubes(TriMesh& mesh) {
+  std::array<const std::vector<float>*, 5> p{};
+  for (std::size_t k = 0; k < kTubeAxisNames.size(); ++k)
+    for (const VertexProperty& q : mesh.vertex_properties)
+      if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
+  if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) return {};
+  std::vector<Vec3> move(mesh.vertices.size(), Vec3::Zero());
+  std::vector<double> radius(mesh.vertices.size());
+  parallel_for(mesh.vertices.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      radius[v] = (*p[3])[v];
+      const double weight = std::clamp(static_cast<double>((*p[4])[v]), 0.0, 1.0);
+      const Vec3 out = -Vec3((*p[0])[v], (*p[1])[v], (*p[2])[v]);  // from the axis point to the vertex
+      const double length = out.norm();
+      if (weight > 0 && length > 0) move[v] = weight * (radius[v] / length - 1) * out;
+    }
+  });
+  mesh.vertex_properties.erase(std::remove_if(mesh.vertex_properties.begin(), mesh.vertex_properties.end(),
+                                              [](const VertexProperty& q) {
+                                                return std::find(kTubeAxisNames.begin(), kTubeAxisNames.end(),
+                                                                 q.name) != kTubeAxisNames.end();
+                                              }),
+                               mesh.vertex_properties.end());
+  return move_without_folding(mesh, std::move(move), radius);
+}
+
+}  // namespace vesselmesh
