@@ -4,6 +4,8 @@
 #   scripts/dev.sh test      install what is missing, build, run the tests (C++, Python, Blender): ~5 minutes
 #   scripts/dev.sh sanitize  the C++ tests again under AddressSanitizer and UBSan (CI runs it; ~15 minutes)
 #   scripts/dev.sh build     install what is missing and build
+#   scripts/dev.sh bench     build, then the benchmark suite (core and Blender) as one table: docs/benchmarks.md;
+#                            `bench quick` for a short run, other arguments go to scripts/bench.py
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -12,7 +14,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 
 # Debian 12 packages the build, the tests and the add-on need.
 packages=(cmake g++ make libeigen3-dev libopenmesh-dev pybind11-dev python3-dev python3-pybind11 python3-numpy
-          python3-pytest libpugixml-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libgtest-dev blender)
+          python3-pytest libpugixml-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libgtest-dev blender time)
 
 install_missing() {
   local missing=()
@@ -89,10 +91,19 @@ run_sanitized() {
   echo "sanitizer tests passed"
 }
 
+# The benchmark suite (scripts/bench.py says what it measures; docs/benchmarks.md has a full run's table).
+bench() {
+  build
+  local args=()
+  if [ "${1:-}" = quick ]; then args+=(--quick); shift; fi
+  /usr/bin/python3 scripts/bench.py "${args[@]}" "$@"
+}
+
 case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
   sanitize) run_sanitized ;;
   build) build ;;
-  *) echo "usage: scripts/dev.sh demo|test|sanitize|build" >&2; exit 2 ;;
+  bench) shift; bench "$@" ;;
+  *) echo "usage: scripts/dev.sh demo|test|sanitize|build|bench [quick]" >&2; exit 2 ;;
 esac

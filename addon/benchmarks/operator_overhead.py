@@ -22,6 +22,19 @@ import time
 
 import bpy
 
+_profile = None  # the temporary user profile the add-on is installed in, kept until Blender exits
+
+
+def install_addon(zip_path):
+    """Installs and enables the add-on from its zip in a temporary user profile (kept for the rest of the
+    session), as a user would, and returns its module."""
+    global _profile
+    _profile = tempfile.TemporaryDirectory(prefix="vesselmesh-bench-")
+    os.environ["BLENDER_USER_SCRIPTS"] = _profile.name
+    bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path))
+    bpy.ops.preferences.addon_enable(module="vesselmesh")
+    return sys.modules["vesselmesh"]
+
 
 def main():
     parser = argparse.ArgumentParser(prog="operator_overhead.py")
@@ -30,11 +43,7 @@ def main():
     parser.add_argument("--repeat", type=int, default=5)
     args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
 
-    profile = tempfile.TemporaryDirectory(prefix="vesselmesh-bench-")
-    os.environ["BLENDER_USER_SCRIPTS"] = profile.name
-    bpy.ops.preferences.addon_install(filepath=os.path.abspath(args.zip))
-    bpy.ops.preferences.addon_enable(module="vesselmesh")
-    addon = sys.modules["vesselmesh"]
+    addon = install_addon(args.zip)
     vc = addon.core.native.core()
     defaults = bpy.ops.import_scene.vesselmesh.get_rna_type().properties
     options = {name: defaults[name].default for name in addon.core.meshing.MESH_OPTIONS}
@@ -64,4 +73,5 @@ def main():
         print(f"| {name} | {triangles:,} | {stats:.3f} | {wall:.3f} | {op:.3f} | {op / stats:.2f} |")
 
 
-main()
+if __name__ == "__main__":
+    main()
