@@ -22,6 +22,18 @@ namespace vesselmesh {
 
 namespace {
 
+/// Hash of three integers (the bit patterns of a point's coordinates), for welding and for finding
+/// coincident points.
+struct BitsHash {
+  template <typename T>
+  std::size_t operator()(const std::array<T, 3>& key) const {
+    uint64_t h = key[0];
+    h = h * 0x9e3779b97f4a7c15ULL ^ key[1];
+    h = h * 0x9e3779b97f4a7c15ULL ^ key[2];
+    return static_cast<std::size_t>(h ^ h >> 29);
+  }
+};
+
 std::string extension_of(const std::string& path) {
   return lower(std::filesystem::path(path).extension().string());
 }
@@ -716,17 +728,9 @@ class Welder {
 
  private:
   using Key = std::array<uint64_t, 3>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const {
-      uint64_t h = key[0];
-      h = h * 0x9e3779b97f4a7c15ULL ^ key[1];
-      h = h * 0x9e3779b97f4a7c15ULL ^ key[2];
-      return static_cast<std::size_t>(h ^ h >> 29);
-    }
-  };
 
   TriMesh& mesh_;
-  std::unordered_map<Key, int32_t, KeyHash> index_;
+  std::unordered_map<Key, int32_t, BitsHash> index_;
 };
 
 uint32_t little_endian_u32(std::string_view bytes, std::size_t offset) {
@@ -837,16 +841,8 @@ TriMesh read_stl(std::string_view bytes, const std::string& path) {
 FloatRounding float_rounding(const TriMesh& mesh) {
   constexpr double kCos30 = 0.8660254037844386;
   using Key = std::array<uint32_t, 3>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const {
-      uint64_t h = key[0];
-      h = h * 0x9e3779b97f4a7c15ULL ^ key[1];
-      h = h * 0x9e3779b97f4a7c15ULL ^ key[2];
-      return static_cast<std::size_t>(h ^ h >> 29);
-    }
-  };
   std::vector<Vec3> rounded(mesh.vertices.size());
-  std::unordered_map<Key, std::size_t, KeyHash> first;
+  std::unordered_map<Key, std::size_t, BitsHash> first;
   first.reserve(mesh.vertices.size());
   FloatRounding result;
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
