@@ -99,6 +99,9 @@ void print_check(const CheckReport& r, const std::string& file) {
   if (r.fidelity)
     std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median
               << " %, 95th " << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n"
+              << "  between the vertices median " << 100 * r.fidelity->centroid_error.median << " %, 95th "
+              << 100 * r.fidelity->centroid_error.p95 << " %, 99th " << 100 * r.fidelity->centroid_error.p99
+              << " % (face centroids off the tubes, by area)\n"
               << "  area off the tubes   " << 100 * r.fidelity->area_off_tubes
               << " % (faces centred over half a radius off them)\n"
               << "  furthest face        " << r.fidelity->largest_centroid_offset

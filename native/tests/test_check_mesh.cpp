@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -768,6 +769,21 @@ TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndAL
     EXPECT_GT(fin.longest_edge, 5.9) << s;
     EXPECT_GT(fin.largest_centroid_offset, 1.2) << s;
     EXPECT_EQ(fin.abs_relative_error.max, clean.abs_relative_error.max) << s;  // the vertices cannot tell
+  }
+}
+
+// On a tube whose vertices all lie on its cylinder, every triangle spans one step of 2π/16 round it, and its
+// centroid lies |2 + e^{iπ/8}| / 3 of the radius from the axis: that is the error between the vertices at
+// every quantile, whatever the scale.
+TEST(RadiusFidelity, CentroidErrorOfATubeOnItsCylinderIsItsChordsClosedForm) {
+  const double expected = 1 - std::abs(2.0 + std::polar(1.0, M_PI / 8)) / 3;
+  for (double s : kScales) {
+    const TriMesh mesh = closed_tube(Vec3::Zero(), s * Vec3(20, 0, 0), s, 40, 16);
+    const FidelityReport f = radius_fidelity(mesh, straight_runs({{Vec3::Zero(), s * Vec3(20, 0, 0)}}, s));
+    EXPECT_NEAR(f.centroid_error.median, expected, 1e-9) << s;
+    EXPECT_NEAR(f.centroid_error.p95, expected, 1e-9) << s;
+    EXPECT_NEAR(f.centroid_error.p99, expected, 1e-9) << s;
+    EXPECT_LT(f.abs_relative_error.max, 1e-9) << s;  // the vertices are exact
   }
 }
 

@@ -114,6 +114,10 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
                 col.label(text=f"Centerline's tubes overlap at {len(overlaps)} place{'' if len(overlaps) == 1 else 's'}"
                                + (f", crossing at {crossing}" if crossing else ""))
             col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
+            between = check["fidelity"].get("centroid_error")
+            if between:
+                col.label(text=f"Between the vertices: median {between['median']:.1%}, 95% {between['p95']:.1%}, "
+                               f"99% {between['p99']:.1%}")
             col.label(text=f"Area off the tubes: {check['fidelity']['area_off_tubes']:.1%}")
             furthest, longest = check["fidelity"].get("largest_centroid_offset"), check["fidelity"].get("longest_edge")
             if furthest and longest:

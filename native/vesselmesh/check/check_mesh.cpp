@@ -44,21 +44,38 @@ bool has_no_area(const Triangle& t) {
   return !(area >= kDegenerateArea * longest) || longest == 0;
 }
 
-Distribution distribution(std::vector<double> values) {
+/// The distribution of `values`, each counting as much as its weight (all alike without weights); the
+/// quantiles interpolate linearly between neighbouring values, each placed at the middle of its weight.
+Distribution distribution(std::vector<double> values, std::vector<double> weights = {}) {
   Distribution d;
   if (values.empty()) return d;
-  std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
+  if (weights.empty()) weights.assign(n, 1.0);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  std::vector<double> sorted(n), middle(n);  // middle[i]: the cumulative weight at the middle of value i
+  double total = 0, sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sorted[i] = values[order[i]];
+    middle[i] = total + 0.5 * weights[order[i]];
+    total += weights[order[i]];
+    sum += weights[order[i]] * sorted[i];
+  }
   auto quantile = [&](double q) {
-    const double x = q * static_cast<double>(n - 1);
-    const std::size_t i = static_cast<std::size_t>(x);
-    return i + 1 < n ? values[i] + (x - static_cast<double>(i)) * (values[i + 1] - values[i]) : values[i];
+    const double at = q * total;
+    const std::size_t i = std::upper_bound(middle.begin(), middle.end(), at) - middle.begin();
+    if (i == 0) return sorted.front();
+    if (i == n) return sorted.back();
+    const double span = middle[i] - middle[i - 1];
+    return span > 0 ? sorted[i - 1] + (at - middle[i - 1]) / span * (sorted[i] - sorted[i - 1]) : sorted[i];
   };
-  d.min = values.front();
-  d.max = values.back();
+  d.min = sorted.front();
+  d.max = sorted.back();
   d.median = quantile(0.5);
   d.p95 = quantile(0.95);
-  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(n);
+  d.p99 = quantile(0.99);
+  d.mean = total > 0 ? sum / total : 0.0;
   d.count = static_cast<int64_t>(n);
   return d;
 }
@@ -68,6 +85,7 @@ nlohmann::ordered_json distribution_json(const Distribution& d) {
   j["min"] = d.min;
   j["median"] = d.median;
   j["p95"] = d.p95;
+  j["p99"] = d.p99;
   j["max"] = d.max;
   j["mean"] = d.mean;
   j["count"] = d.count;
@@ -248,6 +266,7 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   r.relative_error = distribution(std::move(signed_error));
   r.abs_relative_error = distribution(std::move(abs_error));
   double area = 0, off = 0;
+  std::vector<double> centroid_error, face_area;
   int32_t hint = -1;  // faces come in runs along the surface: the last face's cone is a good first guess
   for (const Tri& f : mesh.faces) {
     const Triangle t = corners(mesh.vertices, f);
@@ -257,6 +276,8 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
     const ConeDistance d = cones.nearest(centroid, &hint);
     area += a;
     const double offset = std::abs(d.distance) / d.radius;
+    centroid_error.push_back(offset);
+    face_area.push_back(a);
     if (offset > kOffTube) off += a;
     if (offset > r.largest_centroid_offset)
       r.largest_centroid_offset = offset, r.largest_centroid_offset_at = centroid;
@@ -273,6 +294,7 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
     }
   }
   r.area_off_tubes = area > 0 ? off / area : 0.0;
+  r.centroid_error = distribution(std::move(centroid_error), std::move(face_area));
   return r;
 }
 
@@ -351,6 +373,7 @@ std::string report_json(const CheckReport& report, int indent) {
     fidelity["relative_error"] = distribution_json(report.fidelity->relative_error);
     fidelity["excluded_cap_vertices"] = report.fidelity->excluded_cap_vertices;
     fidelity["area_off_tubes"] = report.fidelity->area_off_tubes;
+    fidelity["centroid_error"] = distribution_json(report.fidelity->centroid_error);
     const auto point = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
     fidelity["largest_centroid_offset"] = {{"relative", report.fidelity->largest_centroid_offset},
                                            {"at", point(report.fidelity->largest_centroid_offset_at)}};

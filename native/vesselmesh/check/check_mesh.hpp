@@ -14,10 +14,10 @@
 
 namespace vesselmesh {
 
-/// Summary of a set of values (all zero when it is empty); median and p95 interpolate linearly between
+/// Summary of a set of values (all zero when it is empty); the quantiles interpolate linearly between
 /// neighbouring values.
 struct Distribution {
-  double min = 0, median = 0, p95 = 0, max = 0, mean = 0;
+  double min = 0, median = 0, p95 = 0, p99 = 0, max = 0, mean = 0;
   int64_t count = 0;
 };
 
@@ -67,6 +67,9 @@ struct FidelityReport {
   /// them (a hull bridging a bend, a triangle from one tube to another), which the vertices' errors miss
   /// when every corner lies on a tube.
   double area_off_tubes = 0;
+  /// |distance| of each face's centroid to the tubes / local radius, weighted by the face's area (caps left
+  /// out): the error between the vertices, where a flat triangle cuts inside a round tube.
+  Distribution centroid_error;
   /// The face centroid furthest off the tubes (in or out; caps left out), in local radii, and where it is:
   /// a fin or a web, of which the vertices say nothing when they lie on the tubes.
   double largest_centroid_offset = 0;
