@@ -74,6 +74,12 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
   if (overlaps.size() > kShown) std::cout << "              ... (all of them: --json)\n";
 }
 
+std::string point_text(const Vec3& p) {
+  std::ostringstream text;
+  text << std::setprecision(6) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return text.str();
+}
+
 void print_check(const CheckReport& r, const std::string& file) {
   const TopologyReport& t = r.topology;
   std::cout << file << "\n"
@@ -94,7 +100,13 @@ void print_check(const CheckReport& r, const std::string& file) {
     std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median
               << " %, 95th " << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n"
               << "  area off the tubes   " << 100 * r.fidelity->area_off_tubes
-              << " % (faces centred over half a radius off them)\n";
+              << " % (faces centred over half a radius off them)\n"
+              << "  furthest face        " << r.fidelity->largest_centroid_offset
+              << " local radii off the tubes, at " << point_text(r.fidelity->largest_centroid_offset_at)
+              << "\n"
+              << "  longest edge         " << r.fidelity->longest_edge << " local radii ("
+              << r.fidelity->longest_edge_length << "), at " << point_text(r.fidelity->longest_edge_at)
+              << "\n";
 }
 
 }  // namespace

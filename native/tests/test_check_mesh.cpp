@@ -730,6 +730,69 @@ TEST(RadiusFidelity, FacesSpanningAcrossTheTubesAreAreaOffThemThoughTheirCorners
   }
 }
 
+// Two parallel tubes of radius 1, along x at y = 0 and y = 6, and a fin: one triangle from two
+// neighbouring vertices on top of the first tube to one on top of the second, as a joint's hull reaching
+// across to a vessel it does not belong to. Its corners lie on the tubes, and so do all the vertices; its
+// centroid lies far off them, and its long edges span the gap.
+TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndALongEdge) {
+  for (double s : kScales) {
+    TriMesh mesh = merged(closed_tube(Vec3::Zero(), s * Vec3(20, 0, 0), s, 40, 16),
+                          closed_tube(s * Vec3(0, 6, 0), s * Vec3(20, 6, 0), s, 40, 16));
+    const CenterlineGraph g =
+        straight_runs({{Vec3::Zero(), s * Vec3(20, 0, 0)}, {s * Vec3(0, 6, 0), s * Vec3(20, 6, 0)}}, s);
+    const FidelityReport clean = radius_fidelity(mesh, g);
+    // A 16-sided ring's chords: centroids 1 − cos(π/16) inside at most, edges 0.5 along and 0.39 round.
+    EXPECT_LT(clean.largest_centroid_offset, 0.02) << s;
+    EXPECT_NEAR(clean.longest_edge, std::hypot(0.5, 2 * std::sin(M_PI / 16)), 1e-9) << s;
+
+    // The fin, from the top of ring 20 of each tube (and ring 21 of the first).
+    auto top = [&](int tube, int ring) {
+      int32_t best = -1;
+      for (int32_t v = tube * (40 * 16 + 2) + ring * 16, j = 0; j < 16; ++j)
+        if (best < 0 || mesh.vertices[v + j].z() > mesh.vertices[best].z()) best = v + j;
+      return best;
+    };
+    const int32_t a = top(0, 20), b = top(0, 21), c = top(1, 20);
+    mesh.faces.push_back({a, b, c});
+    const Vec3 &pa = mesh.vertices[a], &pb = mesh.vertices[b], &pc = mesh.vertices[c];
+    const Vec3 centroid = (pa + pb + pc) / 3;
+    const FidelityReport fin = radius_fidelity(mesh, g);
+    // The centroid lies in the plane x = const, nearest the first tube's axis (y = 2 of 6).
+    EXPECT_NEAR(fin.largest_centroid_offset, Vec3(0, centroid.y(), centroid.z()).norm() / s - 1, 1e-9) << s;
+    EXPECT_LT((fin.largest_centroid_offset_at - centroid).norm(), 1e-12 * s) << s;
+    const bool ac = (pc - pa).norm() > (pc - pb).norm();
+    const Vec3& far = ac ? pa : pb;
+    EXPECT_NEAR(fin.longest_edge, (pc - far).norm() / s, 1e-9) << s;
+    EXPECT_NEAR(fin.longest_edge_length, (pc - far).norm(), 1e-9 * s) << s;
+    EXPECT_LT((fin.longest_edge_at - 0.5 * (pc + far)).norm(), 1e-12 * s) << s;
+    EXPECT_GT(fin.longest_edge, 5.9) << s;
+    EXPECT_GT(fin.largest_centroid_offset, 1.2) << s;
+    EXPECT_EQ(fin.abs_relative_error.max, clean.abs_relative_error.max) << s;  // the vertices cannot tell
+  }
+}
+
+// Each edge counts against the larger of the local radii at its ends: a thin vessel's edges next to a
+// thick one's are not long for the thick one.
+TEST(RadiusFidelity, LongestEdgeIsRelativeToTheLargerRadiusAtItsEnds) {
+  for (double s : kScales) {
+    // Tubes of radius 1 and 0.25 side by side, 1.5 apart, one triangle joining them: its edges 1.5 long.
+    TriMesh mesh = triangles({s * Vec3(5, 0, 1), s * Vec3(5.4, 0, 1), s * Vec3(5, 1.5, 0.25)}, {{0, 1, 2}});
+    CenterlineData d;
+    for (double y : {0.0, 1.5})
+      for (int i = 0; i <= 10; ++i) {
+        d.points.push_back(s * Vec3(i, y, 0));
+        d.radius.push_back(y == 0 ? s : 0.25 * s);
+        if (i > 0)
+          d.edges.push_back(
+              {static_cast<int32_t>(d.points.size()) - 2, static_cast<int32_t>(d.points.size()) - 1});
+      }
+    const FidelityReport f = radius_fidelity(mesh, build_graph(d));
+    const double longest = (Vec3(5.4, 0, 1) - Vec3(5, 1.5, 0.25)).norm();
+    EXPECT_NEAR(f.longest_edge, longest, 1e-9) << s;  // against radius 1, not 0.25
+    EXPECT_NEAR(f.longest_edge_length, longest * s, 1e-9 * s) << s;
+  }
+}
+
 // --- the whole report -------------------------------------------------------------------------------
 
 // --- distance between surfaces ----------------------------------------------------------------------
@@ -791,4 +854,13 @@ TEST(CheckMesh, ReportJsonHoldsEveryPartAndFidelityOnlyWithACenterline) {
   EXPECT_EQ(full.at("fidelity").at("excluded_cap_vertices"), report.fidelity->excluded_cap_vertices);
   EXPECT_LT(full.at("fidelity").at("abs_relative_error").at("max").get<double>(), 1e-12);
   EXPECT_TRUE(full.at("fidelity").at("relative_error").contains("median"));
+  EXPECT_EQ(full.at("fidelity").at("largest_centroid_offset").at("relative").get<double>(),
+            report.fidelity->largest_centroid_offset);
+  EXPECT_EQ(full.at("fidelity").at("largest_centroid_offset").at("at").size(), 3u);
+  EXPECT_EQ(full.at("fidelity").at("longest_edge").at("relative").get<double>(),
+            report.fidelity->longest_edge);
+  EXPECT_EQ(full.at("fidelity").at("longest_edge").at("length").get<double>(),
+            report.fidelity->longest_edge_length);
+  EXPECT_EQ(full.at("fidelity").at("longest_edge").at("at")[0].get<double>(),
+            report.fidelity->longest_edge_at.x());
 }

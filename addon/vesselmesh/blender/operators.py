@@ -240,7 +240,10 @@ class VESSELMESH_OT_check(bpy.types.Operator):
                              f"({crossing['pairs_in_overlapping_tubes']} where the centerline's tubes overlap, "
                              f"at {places} place{'' if places == 1 else 's'}), "
                              f"radius error median {report['fidelity']['abs_relative_error']['median']:.1%}, "
-                             f"{report['fidelity']['area_off_tubes']:.1%} of its area off the tubes")
+                             f"{report['fidelity']['area_off_tubes']:.1%} of its area off the tubes, "
+                             f"the furthest face {report['fidelity']['largest_centroid_offset']['relative']:.2f} "
+                             f"radii off them, the longest edge {report['fidelity']['longest_edge']['relative']:.1f} "
+                             f"radii")
         return {"FINISHED"}
 
 

@@ -93,6 +93,10 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
                                + (f", crossing at {crossing}" if crossing else ""))
             col.label(text=f"Radius error: median {error['median']:.1%}, 95% {error['p95']:.1%}")
             col.label(text=f"Area off the tubes: {check['fidelity']['area_off_tubes']:.1%}")
+            furthest, longest = check["fidelity"].get("largest_centroid_offset"), check["fidelity"].get("longest_edge")
+            if furthest and longest:
+                col.label(text=f"Furthest face {furthest['relative']:.2f} radii off, "
+                               f"longest edge {longest['relative']:.1f} radii")
         layout.operator("vesselmesh.check", icon="CHECKMARK")
 
 

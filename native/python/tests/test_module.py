@@ -139,6 +139,25 @@ def test_mesh_rejects_unknown_options(project_data, kwargs):
         vm.mesh(graph, **kwargs)
 
 
+def test_check_says_how_far_the_furthest_face_and_the_longest_edge_reach_off_the_tubes(project_data):
+    graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
+    surface = vm.mesh(graph, levels=2)
+    fidelity = vm.check(surface["vertices"], surface["faces"], graph)["fidelity"]
+    furthest, longest = fidelity["largest_centroid_offset"], fidelity["longest_edge"]
+    assert 0 < furthest["relative"] < 1 and len(furthest["at"]) == 3
+    assert 0 < longest["relative"] < 3 and longest["length"] > 0 and len(longest["at"]) == 3
+    # A fin from an edge on a child's tube to a point five millimetres off it shows in both.
+    vertices, faces = surface["vertices"], surface["faces"]
+    i = int(np.argmin(np.linalg.norm(vertices - [1.5, 0.0, 8.0], axis=1)))
+    face = next(f for f in faces if i in f)
+    j = int(face[(list(face).index(i) + 1) % 3])  # i's neighbour along a face's side
+    vertices = np.vstack([vertices, vertices[i] + [0.0, 5.0, 0.0]])
+    faces = np.vstack([faces, [[i, j, len(vertices) - 1]]]).astype(np.int32)
+    with_fin = vm.check(vertices, faces, graph)["fidelity"]
+    assert with_fin["largest_centroid_offset"]["relative"] > furthest["relative"]
+    assert with_fin["longest_edge"]["relative"] > longest["relative"]
+
+
 def test_check_rejects_faces_out_of_range():
     with pytest.raises(vm.InputError, match="face 0"):
         vm.check(np.zeros((3, 3)), np.array([[0, 1, 5]]))

@@ -226,6 +226,7 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   if (centerline.edges.empty()) return r;
   const RoundCones cones(centerline);
   std::vector<double> signed_error, abs_error;
+  std::vector<double> local_radius(mesh.vertices.size(), 0.0);  // 0 at cap vertices
   r.per_vertex.assign(mesh.vertices.size(), std::numeric_limits<float>::quiet_NaN());
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
     if (cones.near_cap(mesh.vertices[v])) {
@@ -233,6 +234,7 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
       continue;
     }
     const ConeDistance d = cones.nearest(mesh.vertices[v]);
+    local_radius[v] = d.radius;
     signed_error.push_back(d.distance / d.radius);
     abs_error.push_back(std::abs(d.distance / d.radius));
     r.per_vertex[v] = static_cast<float>(signed_error.back());
@@ -248,7 +250,21 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
     const double a = 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm();
     const ConeDistance d = cones.nearest(centroid, &hint);
     area += a;
-    if (std::abs(d.distance) > kOffTube * d.radius) off += a;
+    const double offset = std::abs(d.distance) / d.radius;
+    if (offset > kOffTube) off += a;
+    if (offset > r.largest_centroid_offset)
+      r.largest_centroid_offset = offset, r.largest_centroid_offset_at = centroid;
+    for (int k = 0; k < 3; ++k) {
+      const int32_t u = f[k], w = f[(k + 1) % 3];
+      const double radius = std::max(local_radius[u], local_radius[w]);
+      if (!(radius > 0)) continue;  // both ends at a cap
+      const double length = (mesh.vertices[w] - mesh.vertices[u]).norm();
+      if (length > r.longest_edge * radius) {
+        r.longest_edge = length / radius;
+        r.longest_edge_length = length;
+        r.longest_edge_at = 0.5 * (mesh.vertices[u] + mesh.vertices[w]);
+      }
+    }
   }
   r.area_off_tubes = area > 0 ? off / area : 0.0;
   return r;
@@ -329,6 +345,12 @@ std::string report_json(const CheckReport& report, int indent) {
     fidelity["relative_error"] = distribution_json(report.fidelity->relative_error);
     fidelity["excluded_cap_vertices"] = report.fidelity->excluded_cap_vertices;
     fidelity["area_off_tubes"] = report.fidelity->area_off_tubes;
+    const auto point = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+    fidelity["largest_centroid_offset"] = {{"relative", report.fidelity->largest_centroid_offset},
+                                           {"at", point(report.fidelity->largest_centroid_offset_at)}};
+    fidelity["longest_edge"] = {{"relative", report.fidelity->longest_edge},
+                                {"length", report.fidelity->longest_edge_length},
+                                {"at", point(report.fidelity->longest_edge_at)}};
   }
   return j.dump(indent);
 }

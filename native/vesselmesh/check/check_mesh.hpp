@@ -67,6 +67,15 @@ struct FidelityReport {
   /// them (a hull bridging a bend, a triangle from one tube to another), which the vertices' errors miss
   /// when every corner lies on a tube.
   double area_off_tubes = 0;
+  /// The face centroid furthest off the tubes (in or out; caps left out), in local radii, and where it is:
+  /// a fin or a web, of which the vertices say nothing when they lie on the tubes.
+  double largest_centroid_offset = 0;
+  Vec3 largest_centroid_offset_at = Vec3::Zero();
+  /// The longest edge in local radii (the larger of the radii at its two ends, caps left out), and its
+  /// midpoint: a long edge reaching across from one vessel to another.
+  double longest_edge = 0;
+  double longest_edge_length = 0;
+  Vec3 longest_edge_at = Vec3::Zero();
   std::vector<float> per_vertex;    ///< signed relative error of each vertex, NaN for cap vertices
 };
 
@@ -92,7 +101,8 @@ QualityReport triangle_quality(const TriMesh& mesh);
 /// their tangent cone; the minimum over edges), divided by the local radius (that of the cone where
 /// the vertex is closest), leaving out cap vertices: those within 2 radii of a terminal and within
 /// one radius of its section along its axis, or beyond it. The same at the face centroids gives the
-/// area off the tubes.
+/// area off the tubes and the centroid furthest off them; each edge's length over the larger local radius
+/// at its ends (that of the nearest cone; edges with both ends at a cap left out), the longest edge.
 FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline);
 
 /// How far one surface strays from another, relative to the vessel's size: the distance from each sample
