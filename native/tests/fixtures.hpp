@@ -335,6 +335,42 @@ inline CenterlineData loop_through_parent(double scale) {
   return d;
 }
 
+/// A thick vessel that turns back in a U before it forks, as coarse tracings of a tortuous artery give
+/// one: radius 1.8, 24 down along −z in points 0.7 apart, round a U of bend radius `bend` (in radii) in 9
+/// points, 9 back up beside the way down, into a joint whose children, of radius 1.2 and 0.75, leave up
+/// and out. Sections crowd round the U, and the tube must get round it without folding (from
+/// brava-records, whose trunks folded there into one straight prism from the root to the joint, through
+/// the vessels beside it).
+inline CenterlineData u_bend_into_a_joint(double bend, double scale) {
+  const double r = 1.8, R = bend * r;
+  CenterlineData d = start(scale * Vec3(0, 0, 24), r * scale);
+  int32_t at = run(d, 0, Vec3::Zero(), 34, r * scale);
+  for (int i = 1; i <= 9; ++i) {
+    const double a = M_PI * i / 9;
+    at = run(d, at, scale * Vec3(R * (1 - std::cos(a)), 0, -R * std::sin(a)), 1, r * scale);
+  }
+  const int32_t joint = run(d, at, scale * Vec3(2 * R, 0, 9), 13, r * scale);
+  d.radius[joint] = 1.2 * scale;
+  run(d, joint, d.points[joint] + scale * Vec3(6, 0, 10), 12, 1.2 * scale);
+  const int32_t twig = run(d, joint, d.points[joint] + scale * Vec3(0, -1.2, 2), 1, 0.75 * scale);
+  run(d, twig, d.points[twig] + scale * Vec3(0, -8, 10), 10, 0.75 * scale);
+  return d;
+}
+
+/// Two children that start from one point and run on side by side, as brava-records' tracings give
+/// them: a trunk of radius 0.6 along +z into the joint, then each child (radius 0.5) 4 out at ±10° from
+/// it and on along +z for 25, 1.4 apart (their tubes 0.4 apart), in points 1.25 apart. Facing along
+/// its child, neither square gets clear of the other's beside it.
+inline CenterlineData siblings_side_by_side(double scale) {
+  CenterlineData d = star({}, scale, 0.6);
+  const int32_t joint = 10;
+  for (double side : {-1.0, 1.0}) {
+    const int32_t out = run(d, joint, 4 * scale * dir(10, side > 0 ? 0 : 180), 3, 0.5 * scale);
+    run(d, out, d.points[out] + scale * Vec3(0, 0, 25), 20, 0.5 * scale);
+  }
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);

@@ -37,6 +37,20 @@ void expect_closed_surface(const TriMesh& mesh, const CenterlineGraph& g, const 
   EXPECT_GT(t.signed_volume, 0.0) << what << ": faces point inwards";
 }
 
+/// The surface lies on its tubes: closed with the graph's genus, uncrossed, no face centroid more than a
+/// local radius off the tubes, at most `area` of its area over half a radius off them, and no edge longer
+/// than `edge` local radii (a fin or a web reaching across to a vessel it does not belong to shows in
+/// these three, though every vertex may lie on a tube).
+void expect_on_its_tubes(const TriMesh& mesh, const CenterlineGraph& g, const std::string& what, double area,
+                         double edge) {
+  expect_closed_surface(mesh, g, what);
+  EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0) << what;
+  const FidelityReport f = radius_fidelity(mesh, g);
+  EXPECT_LE(f.largest_centroid_offset, 1.0) << what << ", at " << f.largest_centroid_offset_at.transpose();
+  EXPECT_LE(f.area_off_tubes, area) << what;
+  EXPECT_LE(f.longest_edge, edge) << what << ", at " << f.longest_edge_at.transpose();
+}
+
 /// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
 FidelityReport uniform_level_two_fidelity(const std::string& path) {
   const CenterlineGraph g = build_graph(read_centerline(path));
@@ -125,6 +139,37 @@ TEST(Pipeline, DISABLED_SomaWithDendritesFiveDegreesApartFollowsItsTubes) {
     const CenterlineGraph g = build_graph(fixtures::soma_with_close_dendrites(5, scale));
     const FidelityReport f = radius_fidelity(mesh_at(g, 2, Caps::flat, Refinement::uniform).mesh, g);
     EXPECT_LE(f.area_off_tubes, 0.05) << "scale " << scale;
+  }
+}
+
+// Not met yet: tiling drops a tube's sections one by one against the last kept, and a section kept at the
+// bottom of the U, facing down its first leg, has the whole way back up behind its plane: every later
+// section is dropped, and the trunk becomes one straight prism from its end to the joint, through
+// everything beside the U (95 crossing pairs, 30 % of the area over half a radius off the tubes at level
+// 2; 22 of brava-records' 42 trees cross themselves so). Bend radius 1.28 radii is tighter than the
+// square corners reach, 1.5 is not. Run with --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_UBendBeforeAJointKeepsItsTubeRoundTheBend) {
+  for (double bend : {1.28, 1.5})
+    for (double scale : {1e-3, 1.0, 1e3}) {
+      const CenterlineGraph g = build_graph(fixtures::u_bend_into_a_joint(bend, scale));
+      for (int levels = 0; levels <= 3; ++levels)
+        expect_on_its_tubes(mesh_at(g, levels).mesh, g,
+                            "bend " + std::to_string(bend) + " scale " + std::to_string(scale) + " level " +
+                                std::to_string(levels),
+                            0.04, 3.5);
+    }
+}
+
+// Not met yet: each child's square has the other child's beside it in its plane, they push each other to
+// the far ends of both, and the patch's hull spans the whole pair, a flat fin between them (11 % of the
+// area off the tubes at level 2, edges 25 radii long; brava-records has 413 such patches). Run with
+// --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::siblings_side_by_side(scale));
+    for (int levels = 0; levels <= 3; ++levels)
+      expect_on_its_tubes(mesh_at(g, levels).mesh, g,
+                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.002, 5);
   }
 }
 
