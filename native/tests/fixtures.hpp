@@ -375,6 +375,10 @@ struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
   int loops;
+  /// Its tubes run through each other away from the joints they share (a side branch through its
+  /// neighbour's tube), and the separate stage leaves them: a surface that follows both crosses itself
+  /// there, and only crossings elsewhere count.
+  bool tubes_cross = false;
 };
 inline void PrintTo(const Named& n, std::ostream* os) { *os << n.name; }
 
@@ -396,14 +400,19 @@ inline std::vector<Named> joint_kinds() {
       {"two_loops_in_one_patch", two_loops_in_one_patch, 2},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
+      {"fig9_small_angle_large_radius",
+       [](double s) {
+         return star({{8, 0, 1}, {8, 180, 1}}, s);
+       },
+       0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
       {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
       {"side_branches_in_a_row", side_branches_in_a_row, 0},
       {"soma", soma, 0},
-      {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0},
+      {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0, true},
+      {"siblings_side_by_side", siblings_side_by_side, 0},
   };
 }
 

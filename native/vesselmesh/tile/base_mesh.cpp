@@ -35,6 +35,10 @@ constexpr int kSharedPositions = 15;
 constexpr int kSharedTilts = 3;
 constexpr int kSharedTries = 4;
 
+/// A free square pushed further from its joint than this many corner radii of the patch's widest branch
+/// may tilt to clear the other squares (see tilt_square).
+constexpr double kTiltFrom = 2;
+
 /// How a branch that meets a joint is built.
 enum class Kind {
   tube,       ///< a square at each joint end, a tube between them
@@ -52,6 +56,7 @@ struct End {
   bool stuck = false;         ///< pushed to the far end of its branch without clearing the other squares
   bool fixed = false;         ///< stub and shared squares stay where they are
   bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
+  bool tilted = false;        ///< tilted from that direction to clear the other squares (tilt_square)
   Section square;             ///< normal points away from the joint, corners counter-clockwise about it
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
 };
@@ -276,11 +281,13 @@ class Tiler {
     return reach + margin;
   }
 
-  /// Pushes each free square along its branch until it is a face of the patch's hull. Stub and shared
-  /// squares stay put; a square that reaches the far end of its branch is marked stuck. A square that
-  /// the turn of its branch's tangent pushes to the far end is tried again facing along its chord: on
-  /// a short or sharply bent branch the tangent there can point back across the patch, so that the
-  /// squares keep pushing each other along, where the chord points away from the joint.
+  /// Pushes each free square along its branch until it is a face of the patch's hull; out of the reach of
+  /// the patch's widest tube, a square that has not cleared the others tilts where it stands if that
+  /// clears them (tilt_square). Stub and shared squares stay put; a square that reaches the far end of its
+  /// branch is marked stuck. A square that the turn of its branch's tangent pushes to the far end is tried
+  /// again facing along its chord: on a short or sharply bent branch the tangent there can point back
+  /// across the patch, so that the squares keep pushing each other along, where the chord points away
+  /// from the joint.
   void place_squares(const Patch& p, int attempt) {
     for (int32_t i : p.ends) ends_[i].chord = false;
     for (;;) {
@@ -295,10 +302,19 @@ class Tiler {
   }
 
   void push_squares(const Patch& p, int attempt) {
+    // Squares pushed this far from the joint (out of the widest tube's reach round it) may tilt.
+    double widest = 0;
+    for (int32_t i : p.ends) {
+      const End& e = ends_[i];
+      if (kind_[e.branch] != Kind::tunnel)
+        widest = std::max(widest, curves_[e.branch].radius_at(e.at_start ? 0 : curves_[e.branch].length()));
+    }
+    const double tilt_from = kTiltFrom * scale() * widest;
     for (int32_t i : p.ends) {
       End& e = ends_[i];
       const BranchCurve& c = curves_[e.branch];
       e.stuck = false;
+      e.tilted = false;
       e.fixed = kind_[e.branch] == Kind::stub || kind_[e.branch] == Kind::shared;
       if (kind_[e.branch] == Kind::stub) {
         e.t = c.length();
@@ -321,17 +337,56 @@ class Tiler {
       for (int32_t i : p.ends) {
         End& e = ends_[i];
         if (e.fixed || e.stuck) continue;
-        const double overlap = intrusion(e, p);
+        double overlap = intrusion(e, p);
         if (overlap <= 0) continue;
+        moved = true;
+        // A tilted square that no longer clears the others stands upright again, or tilts another way,
+        // where it is; only then does it move on.
+        if (e.tilted) {
+          e.square = square_at(e, e.t);
+          e.tilted = false;
+          if ((overlap = intrusion(e, p)) <= 0) continue;
+        }
+        if (kind_[e.branch] == Kind::tube && e.t >= tilt_from && tilt_square(e, p)) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
         const double length = travel(e);
         e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
-        moved = true;
       }
       if (!moved) return;
     }
+  }
+
+  /// Tilts the square of `e`, where it stands, from its branch's direction by the fewest steps of 15° (up to
+  /// kSharedTilts) towards one of 8 directions round it, so that the patch's other squares lie behind its
+  /// plane: of that tilt, the direction that clears them most. Facing along their branches, the squares of
+  /// two branches that run on side by side from a joint (siblings from one point in brava-records, the
+  /// legs of a U-bend at a corner joint) each have the other beside them in their plane, wherever they
+  /// stand: pushed by turns, they went on for tens of radii, and the patch's hull with them, a flat fin
+  /// between the two (fixture siblings_side_by_side). Tilted away from each other they clear. Returns
+  /// false, the square upright, when no tilt clears.
+  bool tilt_square(End& e, const Patch& p) {
+    const Section upright = square_at(e, e.t);
+    const Vec3 across = any_perpendicular(upright.normal);
+    for (int tilt = 1; tilt <= kSharedTilts; ++tilt) {
+      double best = 0;
+      Vec3 best_normal = upright.normal;
+      for (int towards = 0; towards < 8; ++towards) {
+        e.square.normal =
+            rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
+        const double overlap = intrusion(e, p);
+        if (overlap < best) best = overlap, best_normal = e.square.normal;
+      }
+      if (best < 0) {
+        e.square = upright;
+        e.square.normal = best_normal;
+        e.tilted = true;
+        return true;
+      }
+    }
+    e.square = upright;
+    return false;
   }
 
   /// Where one square on branch b can close both of its joints' patches: its plane must have the
