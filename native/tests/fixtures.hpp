@@ -413,6 +413,8 @@ inline std::vector<Named> joint_kinds() {
       {"soma", soma, 0},
       {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0, true},
       {"siblings_side_by_side", siblings_side_by_side, 0},
+      {"u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.5, s); }, 0},
+      {"tight_u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.28, s); }, 0},
   };
 }
 

@@ -39,6 +39,9 @@ constexpr int kSharedTries = 4;
 /// may tilt to clear the other squares (see tilt_square).
 constexpr double kTiltFrom = 2;
 
+/// A tube's kept sections are at most this many of its sampled sections apart (see drop_folds).
+constexpr std::size_t kFoldSkip = 64;
+
 /// How a branch that meets a joint is built.
 enum class Kind {
   tube,       ///< a square at each joint end, a tube between them
@@ -160,16 +163,80 @@ class Tiler {
         continue;
       }
       mark_corners(b);
-      std::size_t from = 0;
-      for (std::size_t i = 1; i <= k; ++i) {
-        if (i < k && !corner_[b.points[i]]) continue;
-        Branch piece;
-        piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
-        piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
-        branches_.push_back(std::move(piece));
-        from = i;
+      std::vector<Branch> pieces;
+      for (bool cut = true; cut;) {
+        pieces.clear();
+        std::size_t from = 0;
+        for (std::size_t i = 1; i <= k; ++i) {
+          if (i < k && !corner_[b.points[i]]) continue;
+          Branch piece;
+          piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
+          piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
+          pieces.push_back(std::move(piece));
+          from = i;
+        }
+        cut = false;
+        for (const Branch& piece : pieces) {
+          const int32_t corner = tight_bend(piece);
+          if (corner >= 0) corner_[corner] = 1, cut = true;
+        }
       }
+      branches_.insert(branches_.end(), pieces.begin(), pieces.end());
     }
+  }
+
+  /// For each section, the most sections a chain from the first to it keeps, no two kept in a row
+  /// crossing (one's square reaching across the other's plane) and none more than kFoldSkip apart; 0
+  /// where no chain gets. `from` receives each section's predecessor in its chain.
+  std::vector<int> fold_free_chains(const std::vector<Section>& sections,
+                                    std::vector<std::size_t>& from) const {
+    const std::size_t n = sections.size();
+    std::vector<int> count(n, 0);
+    from.assign(n, 0);
+    if (n == 0) return count;
+    count[0] = 1;
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = i; j-- > (i > kFoldSkip ? i - kFoldSkip : 0);)  // the nearest first, on ties
+        if (count[j] + 1 > count[i] && count[j] > 0 && !crosses(sections[j], sections[i]))
+          count[i] = count[j] + 1, from[i] = j;
+    return count;
+  }
+
+  /// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
+  /// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
+  /// reaching across the next one's plane, and a tube would fold there however its sections were
+  /// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
+  /// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
+  /// break off; −1 when they get through, or no point of the piece is there.
+  int32_t tight_bend(const Branch& piece) const {
+    const std::size_t k = piece.points.size() - 1;
+    if (k < 2) return -1;
+    const BranchCurve c = branch_curve(g_, piece);
+    const std::vector<double> arcs = sample_branch(c, 0, c.length(), opt_.sampling);
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
+      sections[i].center = c.position(arcs[i]);
+      sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
+    }
+    std::vector<std::size_t> from;
+    const std::vector<int> count = fold_free_chains(sections, from);
+    const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
+    if (broken == count.size()) return -1;
+    const double r = sections[broken].radius;
+    const double lo = arcs[broken - 1] - 2 * scale() * r, hi = arcs[broken] + 2 * r;
+    auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
+    int32_t sharpest = -1;
+    double lowest = 1;  // cosine of the turn
+    for (std::size_t i = 1; i < k; ++i) {
+      const double s = c.arc[i];
+      if (s < lo || s > hi) continue;
+      const double reach = 2 * g_.radius[piece.points[i]];
+      const Vec3 in = (c.points[i] - at(s - reach)).normalized(),
+                 out = (at(s + reach) - c.points[i]).normalized();
+      if (in.dot(out) < lowest) lowest = in.dot(out), sharpest = piece.points[i];
+    }
+    return sharpest;
   }
 
   /// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
@@ -883,15 +950,31 @@ class Tiler {
     if (ring) sections.back().center = sections.front().center;
   }
 
-  /// Drops the inner sections whose squares cross the plane of the section kept before them, or of the
-  /// last: the tube would fold there (a bend tighter than the corners' radius, or a joint square
-  /// facing along its chord while the branch turns). The end sections stay.
+  /// Keeps the most sections such that no two kept in a row cross (one's square reaching across the
+  /// other's plane: the tube would fold between them, on a bend tighter than the corners' radius, or where
+  /// a joint square facing along its chord meets a turning branch). The end sections stay. Dropped one
+  /// by one against the last kept, a section kept at the bottom of a U-bend, facing down its first leg,
+  /// had the whole way back up behind its plane: every later section went, and the tube became one
+  /// straight prism from end to end, through whatever lay beside the bend (brava-records' trunks;
+  /// fixture u_bend_into_a_joint). Kept sections are at most kFoldSkip apart; where no such chain reaches
+  /// the last section, sections are dropped one by one as before.
   void drop_folds(std::vector<Section>& sections) const {
-    std::vector<Section> kept{sections.front()};
-    for (std::size_t i = 1; i + 1 < sections.size(); ++i)
-      if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
-    while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
-    kept.push_back(sections.back());
+    const std::size_t n = sections.size();
+    if (n <= 2) return;
+    std::vector<std::size_t> from;
+    const std::vector<int> count = fold_free_chains(sections, from);
+    std::vector<Section> kept;
+    if (count[n - 1] > 0) {
+      for (std::size_t i = n - 1; i > 0; i = from[i]) kept.push_back(sections[i]);
+      kept.push_back(sections.front());
+      std::reverse(kept.begin(), kept.end());
+    } else {
+      kept.push_back(sections.front());
+      for (std::size_t i = 1; i + 1 < n; ++i)
+        if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
+      while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
+      kept.push_back(sections.back());
+    }
     sections = std::move(kept);
   }
 
