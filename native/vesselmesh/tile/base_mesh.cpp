@@ -431,17 +431,32 @@ class Tiler {
   /// two branches that run on side by side from a joint (siblings from one point in brava-records, the
   /// legs of a U-bend at a corner joint) each have the other beside them in their plane, wherever they
   /// stand: pushed by turns, they went on for tens of radii, and the patch's hull with them, a flat fin
-  /// between the two (fixture siblings_side_by_side). Tilted away from each other they clear. Returns
-  /// false, the square upright, when no tilt clears.
+  /// between the two (fixture siblings_side_by_side). Tilted away from each other they clear. A tilt must
+  /// leave the branch's own way on, one and two corner radii further, in front of the square (tilted
+  /// across a turning branch, a square had the next 16 radii of it behind its plane, and the tube went
+  /// straight across them). Returns false, the square upright, when no tilt will do.
   bool tilt_square(End& e, const Patch& p) {
     const Section upright = square_at(e, e.t);
     const Vec3 across = any_perpendicular(upright.normal);
+    // The branch's own sections one and two corner radii further on, facing along it, which a tilted
+    // square must not reach across: its tube would fold there, or drop its sections for many radii.
+    const BranchCurve& c = curves_[e.branch];
+    const double reach = scale() * upright.radius;
+    if (e.t + 2 * reach > c.length()) return false;
+    std::array<Section, 2> ahead;
+    for (int k = 0; k < 2; ++k) {
+      const double s = e.at_start ? e.t + (k + 1) * reach : c.length() - e.t - (k + 1) * reach;
+      ahead[k].center = c.position(s);
+      ahead[k].radius = c.radius_at(s);
+      ahead[k].normal = e.at_start ? c.tangent(s) : Vec3(-c.tangent(s));
+    }
     for (int tilt = 1; tilt <= kSharedTilts; ++tilt) {
       double best = 0;
       Vec3 best_normal = upright.normal;
       for (int towards = 0; towards < 8; ++towards) {
         e.square.normal =
             rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
+        if (crosses(e.square, ahead[0]) || crosses(e.square, ahead[1])) continue;
         const double overlap = intrusion(e, p);
         if (overlap < best) best = overlap, best_normal = e.square.normal;
       }
