@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ostream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -367,6 +368,33 @@ inline CenterlineData siblings_side_by_side(double scale) {
   for (double side : {-1.0, 1.0}) {
     const int32_t out = run(d, joint, 4 * scale * dir(10, side > 0 ? 0 : 180), 3, 0.5 * scale);
     run(d, out, d.points[out] + scale * Vec3(0, 0, 25), 20, 0.5 * scale);
+  }
+  return d;
+}
+
+/// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
+/// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
+/// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from
+/// sides a right angle apart, and the tube folded between them.
+inline CenterlineData crowded_joints(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 0.2413 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{0.0149, 0.0333, 0.0298}, 0.2084, 0},   {{0.1033, 0.2617, 0.2247}, 0.1785, 1},
+      {{-0.0251, 0.3376, -0.2011}, 0.2866, 0}, {{0.0373, 0.4046, -0.0460}, 0.2540, 3},
+      {{0.1148, 0.6493, 0.2532}, 0.2235, 4},   {{1.2750, 1.1705, 3.2839}, 0.1854, 4},
+      {{0.0620, 0.5902, 1.9612}, 0.2018, 1},   {{0.0787, 0.4288, 0.1117}, 0.2562, 4},
+      {{0.2030, 0.3476, 0.2851}, 0.2139, 8},   {{0.2556, 0.3353, 0.3212}, 0.2108, 9},
+      {{0.2786, 0.3287, 0.3423}, 0.1968, 10},  {{1.2675, -0.6782, 0.4741}, 0.2192, 11},
+      {{0.7975, 2.2307, 1.9779}, 0.1825, 5},   {{0.9488, 2.9534, 2.4827}, 0.1410, 13},
+      {{1.4708, 5.7775, 4.7000}, 0.1458, 14},  {{4.1164, 9.0113, 5.2746}, 0.1666, 15},
+      {{0.1045, 0.6630, 0.2727}, 0.1728, 5},   {{-0.8739, 2.0096, 2.2559}, 0.1952, 17},
+      {{2.0538, 0.0890, -0.2627}, 0.2267, 10},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
   }
   return d;
 }

@@ -176,6 +176,21 @@ TEST(Pipeline, SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
   }
 }
 
+// Not met yet: a short tube between two patches whose squares face it from sides a right angle apart folds
+// between them (9, 24, 61 and 105 crossing pairs at levels 0 to 3; brava-records BH0005 crossed itself
+// so). Run with --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_CrowdedJointsGetNoFoldedTubeBetweenThem) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::crowded_joints(scale));
+    for (int levels = 0; levels <= 3; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const TriMesh mesh = mesh_at(g, levels).mesh;
+      expect_closed_surface(mesh, g, what);
+      EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0) << what;
+    }
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {
