@@ -510,6 +510,30 @@ class Tiler {
     return best;
   }
 
+  /// Whether the tube of branch b, between the squares at its two joints, would fold: no chain of its
+  /// sections from one square to the other gets there without one reaching across the next one's plane
+  /// (fold_free_chains). A short thick branch between two patches that face it from sides a right angle
+  /// apart folded so (brava-records BH0005). Only tubes shorter than four corner radii are looked at;
+  /// longer ones have room to turn, and their bends too tight for sections are corners already.
+  bool tube_folds(int32_t b) const {
+    const End &head = ends_[head_[b]], &tail = ends_[tail_[b]];
+    const BranchCurve& c = curves_[b];
+    const double from = head.t, to = c.length() - tail.t;
+    if (to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
+    const std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
+      sections[i].center = c.position(arcs[i]);
+      sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
+    }
+    sections.front() = head.square;
+    sections.back() = tail.square;
+    sections.back().normal = -tail.square.normal;  // along the branch, as the others
+    std::vector<std::size_t> chain;
+    return fold_free_chains(sections, chain).back() == 0;
+  }
+
   /// Whether a branch from a joint to a terminal has room for a tube after its joint square: its end lies
   /// a quarter of its radius or more in front of the square, or two diameters away. One that turns back
   /// behind the square within that (a hairpin a few radii long) would fold into the patch.
@@ -577,7 +601,7 @@ class Tiler {
           bool stuck = false;
           for (int32_t i : {head_[b], tail_[b]})
             if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-          if (!stuck && used <= curves_[b].length() && (both || room_for_tube(b))) continue;
+          if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b) : room_for_tube(b))) continue;
         }
         changed = true;
         if (!both) {
