@@ -3,12 +3,16 @@
 // characteristic 2·components − 2·loops, no self-intersections, radius faithful.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "fixtures.hpp"
 #include "test_support.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
 #include "vesselmesh/sample/sample.hpp"
+#include "vesselmesh/separate/separate.hpp"
 #include "vesselmesh/synth/synth.hpp"
 
 using namespace vesselmesh;
@@ -372,3 +376,58 @@ TEST(SharedFidelity, DISABLED_HemibrainSurfaceFollowsItsTubes) {
   SHARED_DATA_OR_SKIP(path, "neuron-hemibrain-da1/1734350788.swc");
   EXPECT_LE(uniform_level_two_fidelity(path).area_off_tubes, 0.01);
 }
+
+// --- the brava-records cohort ------------------------------------------------------------------------
+
+/// The cohort's files (../shared/data/brava-records/*.swc), or one placeholder that skips without it.
+std::vector<std::string> cohort_files() {
+  std::vector<std::string> files;
+  const std::string folder = test::shared_data("brava-records");
+  if (!folder.empty())
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+      if (entry.path().extension() == ".swc") files.push_back(entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) files.push_back("absent.swc");
+  return files;
+}
+
+class SharedCohort : public testing::TestWithParam<std::string> {};
+
+// 42 real cerebral trees of one kind, every joint's children starting from one duplicated point, radii
+// stepping by up to 4× at joints, trunks turning back in U-bends (../shared/data/brava-records/SOURCE.md).
+TEST_P(SharedCohort, SurfaceIsAClosedManifoldWithOneComponent) {
+  SHARED_DATA_OR_SKIP(path, "brava-records/" + GetParam());
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  const TopologyReport t = check_topology(mesh_at(g, 2).mesh);
+  EXPECT_TRUE(t.closed_manifold());
+  EXPECT_EQ(t.components, g.components);
+}
+
+// Not met yet on every tree (level 2, default options; the surface measured against the centerline as the
+// separate stage left it). Crossing: BH0004 (the separate stage leaves 171 of its crossing edge pairs),
+// BH0006 (its added points coincide where two edges of one vessel lie on one line, and the graph gains two
+// loops) and BH0009 (3 left); more than 0.2 % of the area over half a radius off the tubes: 18 trees, up
+// to 0.62 %; a face centroid over a local radius off them: 27 trees, on merged joints' hulls. Before the
+// tiling changes of this suite's commit series, 22 trees crossed themselves (21 outside overlapping
+// tubes, up to 402 pairs) and 41 had more than 0.2 % off (up to 3 %). Run with
+// --gtest_also_run_disabled_tests.
+TEST_P(SharedCohort, DISABLED_SurfaceFollowsItsTubesUncrossedWithItsGenus) {
+  SHARED_DATA_OR_SKIP(path, "brava-records/" + GetParam());
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  const TriMesh mesh = mesh_at(g, 2).mesh;
+  const TopologyReport t = check_topology(mesh);
+  EXPECT_EQ(t.genus, g.loops);
+  EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0);
+  const Separation moved = separate_crossings(g, RoundCones(g));
+  const FidelityReport f = radius_fidelity(mesh, moved.moved_points > 0 ? moved.graph : g);
+  EXPECT_LE(f.area_off_tubes, 0.002);
+  EXPECT_LE(f.largest_centroid_offset, 1.0) << "at " << f.largest_centroid_offset_at.transpose();
+}
+
+INSTANTIATE_TEST_SUITE_P(BravaRecords, SharedCohort, testing::ValuesIn(cohort_files()),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
