@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ostream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -335,10 +336,77 @@ inline CenterlineData loop_through_parent(double scale) {
   return d;
 }
 
+/// A thick vessel that turns back in a U before it forks, as coarse tracings of a tortuous artery give
+/// one: radius 1.8, 24 down along −z in points 0.7 apart, round a U of bend radius `bend` (in radii) in 9
+/// points, 9 back up beside the way down, into a joint whose children, of radius 1.2 and 0.75, leave up
+/// and out. Sections crowd round the U, and the tube must get round it without folding (from
+/// brava-records, whose trunks folded there into one straight prism from the root to the joint, through
+/// the vessels beside it).
+inline CenterlineData u_bend_into_a_joint(double bend, double scale) {
+  const double r = 1.8, R = bend * r;
+  CenterlineData d = start(scale * Vec3(0, 0, 24), r * scale);
+  int32_t at = run(d, 0, Vec3::Zero(), 34, r * scale);
+  for (int i = 1; i <= 9; ++i) {
+    const double a = M_PI * i / 9;
+    at = run(d, at, scale * Vec3(R * (1 - std::cos(a)), 0, -R * std::sin(a)), 1, r * scale);
+  }
+  const int32_t joint = run(d, at, scale * Vec3(2 * R, 0, 9), 13, r * scale);
+  d.radius[joint] = 1.2 * scale;
+  run(d, joint, d.points[joint] + scale * Vec3(6, 0, 10), 12, 1.2 * scale);
+  const int32_t twig = run(d, joint, d.points[joint] + scale * Vec3(0, -1.2, 2), 1, 0.75 * scale);
+  run(d, twig, d.points[twig] + scale * Vec3(0, -8, 10), 10, 0.75 * scale);
+  return d;
+}
+
+/// Two children that start from one point and run on side by side, as brava-records' tracings give
+/// them: a trunk of radius 0.6 along +z into the joint, then each child (radius 0.5) 4 out at ±10° from
+/// it and on along +z for 25, 1.4 apart (their tubes 0.4 apart), in points 1.25 apart. Facing along
+/// its child, neither square gets clear of the other's beside it.
+inline CenterlineData siblings_side_by_side(double scale) {
+  CenterlineData d = star({}, scale, 0.6);
+  const int32_t joint = 10;
+  for (double side : {-1.0, 1.0}) {
+    const int32_t out = run(d, joint, 4 * scale * dir(10, side > 0 ? 0 : 180), 3, 0.5 * scale);
+    run(d, out, d.points[out] + scale * Vec3(0, 0, 25), 20, 0.5 * scale);
+  }
+  return d;
+}
+
+/// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
+/// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
+/// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from
+/// sides a right angle apart, and the tube folded between them.
+inline CenterlineData crowded_joints(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 0.2413 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{0.0149, 0.0333, 0.0298}, 0.2084, 0},   {{0.1033, 0.2617, 0.2247}, 0.1785, 1},
+      {{-0.0251, 0.3376, -0.2011}, 0.2866, 0}, {{0.0373, 0.4046, -0.0460}, 0.2540, 3},
+      {{0.1148, 0.6493, 0.2532}, 0.2235, 4},   {{1.2750, 1.1705, 3.2839}, 0.1854, 4},
+      {{0.0620, 0.5902, 1.9612}, 0.2018, 1},   {{0.0787, 0.4288, 0.1117}, 0.2562, 4},
+      {{0.2030, 0.3476, 0.2851}, 0.2139, 8},   {{0.2556, 0.3353, 0.3212}, 0.2108, 9},
+      {{0.2786, 0.3287, 0.3423}, 0.1968, 10},  {{1.2675, -0.6782, 0.4741}, 0.2192, 11},
+      {{0.7975, 2.2307, 1.9779}, 0.1825, 5},   {{0.9488, 2.9534, 2.4827}, 0.1410, 13},
+      {{1.4708, 5.7775, 4.7000}, 0.1458, 14},  {{4.1164, 9.0113, 5.2746}, 0.1666, 15},
+      {{0.1045, 0.6630, 0.2727}, 0.1728, 5},   {{-0.8739, 2.0096, 2.2559}, 0.1952, 17},
+      {{2.0538, 0.0890, -0.2627}, 0.2267, 10},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);
   int loops;
+  /// Its tubes run through each other away from the joints they share (a side branch through its
+  /// neighbour's tube), and the separate stage leaves them: a surface that follows both crosses itself
+  /// there, and only crossings elsewhere count.
+  bool tubes_cross = false;
 };
 inline void PrintTo(const Named& n, std::ostream* os) { *os << n.name; }
 
@@ -360,14 +428,21 @@ inline std::vector<Named> joint_kinds() {
       {"two_loops_in_one_patch", two_loops_in_one_patch, 2},
       {"sharp_bend", [](double s) { return bend(2.0, s); }, 0},
       {"fig9_large_radius_high_curvature", [](double s) { return bend(1.6, s); }, 0},
-      {"fig9_small_angle_large_radius", [](double s) { return star({{8, 0, 1}, {8, 180, 1}}, s); }, 0},
+      {"fig9_small_angle_large_radius",
+       [](double s) {
+         return star({{8, 0, 1}, {8, 180, 1}}, s);
+       },
+       0},
       {"hairpin", hairpin, 0},
       {"hairpin_at_a_joint", hairpin_at_a_joint, 0},
       {"u_turn", u_turn, 0},
       {"hairpin_over_short_edges", hairpin_over_short_edges, 0},
       {"side_branches_in_a_row", side_branches_in_a_row, 0},
       {"soma", soma, 0},
-      {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0},
+      {"soma_with_dendrites_5deg_apart", [](double s) { return soma_with_close_dendrites(5, s); }, 0, true},
+      {"siblings_side_by_side", siblings_side_by_side, 0},
+      {"u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.5, s); }, 0},
+      {"tight_u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.28, s); }, 0},
   };
 }
 

@@ -3,12 +3,16 @@
 // characteristic 2·components − 2·loops, no self-intersections, radius faithful.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "fixtures.hpp"
 #include "test_support.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
 #include "vesselmesh/sample/sample.hpp"
+#include "vesselmesh/separate/separate.hpp"
 #include "vesselmesh/synth/synth.hpp"
 
 using namespace vesselmesh;
@@ -37,6 +41,20 @@ void expect_closed_surface(const TriMesh& mesh, const CenterlineGraph& g, const 
   EXPECT_GT(t.signed_volume, 0.0) << what << ": faces point inwards";
 }
 
+/// The surface lies on its tubes: closed with the graph's genus, uncrossed, no face centroid more than a
+/// local radius off the tubes, at most `area` of its area over half a radius off them, and no edge longer
+/// than `edge` local radii (a fin or a web reaching across to a vessel it does not belong to shows in
+/// these three, though every vertex may lie on a tube).
+void expect_on_its_tubes(const TriMesh& mesh, const CenterlineGraph& g, const std::string& what, double area,
+                         double edge) {
+  expect_closed_surface(mesh, g, what);
+  EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0) << what;
+  const FidelityReport f = radius_fidelity(mesh, g);
+  EXPECT_LE(f.largest_centroid_offset, 1.0) << what << ", at " << f.largest_centroid_offset_at.transpose();
+  EXPECT_LE(f.area_off_tubes, area) << what;
+  EXPECT_LE(f.longest_edge, edge) << what << ", at " << f.longest_edge_at.transpose();
+}
+
 /// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
 FidelityReport uniform_level_two_fidelity(const std::string& path) {
   const CenterlineGraph g = build_graph(read_centerline(path));
@@ -63,7 +81,8 @@ TEST_P(JointKind, SurfaceHasNoSelfIntersections) {
   const CenterlineGraph g = build_graph(GetParam().make(1.0));
   for (int levels : {0, 1, 2}) {
     const IntersectionReport r = find_self_intersections(mesh_at(g, levels).mesh, &g);
-    EXPECT_EQ(r.pairs, 0) << GetParam().name << " level " << levels;
+    EXPECT_EQ(r.pairs - (GetParam().tubes_cross ? r.pairs_in_overlapping_tubes : 0), 0)
+        << GetParam().name << " level " << levels;
   }
 }
 
@@ -116,15 +135,63 @@ TEST(Pipeline, SomaWithDendritesFromItsCentreHasItsSphereAtEveryScale) {
   }
 }
 
-// Not met yet: two dendrites leaving a soma 5° apart overlap for most of their length, their squares
-// cannot part, and the soma's joint merges with both their forks: one convex hull from the soma to the
-// forks, 32 % of the surface's area over half a radius off the tubes at level 2. Run with
-// --gtest_also_run_disabled_tests.
-TEST(Pipeline, DISABLED_SomaWithDendritesFiveDegreesApartFollowsItsTubes) {
+// Two dendrites leaving a soma 5° apart overlap for most of their length. Before squares could tilt, their
+// squares could not part, and the soma's joint merged with both their forks: one convex hull from the soma
+// to the forks, 32 % of the surface's area over half a radius off the tubes at level 2 (now 2.6 %). Each
+// fork's side branch runs through the other dendrite's tube there, so the surface crosses itself inside
+// the overlapping tubes (JointKind's tubes_cross).
+TEST(Pipeline, SomaWithDendritesFiveDegreesApartFollowsItsTubes) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::soma_with_close_dendrites(5, scale));
     const FidelityReport f = radius_fidelity(mesh_at(g, 2, Caps::flat, Refinement::uniform).mesh, g);
     EXPECT_LE(f.area_off_tubes, 0.05) << "scale " << scale;
+  }
+}
+
+// Not met before tiling kept the most sections of a tube that no two in a row cross, and made a bend too
+// tight for any such sections a corner joint: sections were dropped one by one against the last kept, a
+// section kept at the bottom of the U, facing down its first leg, had the whole way back up behind its
+// plane, every later section was dropped, and the trunk became one straight prism from its end to the
+// joint, through everything beside the U (95 crossing pairs, 30 % of the area over half a radius off the
+// tubes at level 2; 22 of brava-records' 42 trees crossed themselves so). Bend radius 1.28 radii is
+// tighter than the square corners reach (a corner joint), 1.5 is not (sections skip the bottom of the U).
+TEST(Pipeline, UBendBeforeAJointKeepsItsTubeRoundTheBend) {
+  for (double bend : {1.28, 1.5})
+    for (double scale : {1e-3, 1.0, 1e3}) {
+      const CenterlineGraph g = build_graph(fixtures::u_bend_into_a_joint(bend, scale));
+      for (int levels = 0; levels <= 3; ++levels)
+        expect_on_its_tubes(mesh_at(g, levels).mesh, g,
+                            "bend " + std::to_string(bend) + " scale " + std::to_string(scale) + " level " +
+                                std::to_string(levels),
+                            0.04, 3.5);
+    }
+}
+
+// Not met before squares pushed out of their joint's reach could tilt: each child's square had the other
+// child's beside it in its plane, they pushed each other to the far ends of both, and the patch's hull
+// spanned the whole pair, a flat fin between them (11 % of the area off the tubes at level 2, edges 25
+// radii long; brava-records had 413 such patches).
+TEST(Pipeline, SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::siblings_side_by_side(scale));
+    for (int levels = 0; levels <= 3; ++levels)
+      expect_on_its_tubes(mesh_at(g, levels).mesh, g,
+                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.002, 5);
+  }
+}
+
+// Not met before a short tube that no fold-free sections join to its two squares was no tube: it folded
+// between two patches whose squares faced it from sides a right angle apart (9, 24, 61 and 105 crossing
+// pairs at levels 0 to 3; brava-records BH0005 crossed itself so).
+TEST(Pipeline, CrowdedJointsGetNoFoldedTubeBetweenThem) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::crowded_joints(scale));
+    for (int levels = 0; levels <= 3; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const TriMesh mesh = mesh_at(g, levels).mesh;
+      expect_closed_surface(mesh, g, what);
+      EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0) << what;
+    }
   }
 }
 
@@ -309,3 +376,58 @@ TEST(SharedFidelity, DISABLED_HemibrainSurfaceFollowsItsTubes) {
   SHARED_DATA_OR_SKIP(path, "neuron-hemibrain-da1/1734350788.swc");
   EXPECT_LE(uniform_level_two_fidelity(path).area_off_tubes, 0.01);
 }
+
+// --- the brava-records cohort ------------------------------------------------------------------------
+
+/// The cohort's files (../shared/data/brava-records/*.swc), or one placeholder that skips without it.
+std::vector<std::string> cohort_files() {
+  std::vector<std::string> files;
+  const std::string folder = test::shared_data("brava-records");
+  if (!folder.empty())
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+      if (entry.path().extension() == ".swc") files.push_back(entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) files.push_back("absent.swc");
+  return files;
+}
+
+class SharedCohort : public testing::TestWithParam<std::string> {};
+
+// 42 real cerebral trees of one kind, every joint's children starting from one duplicated point, radii
+// stepping by up to 4× at joints, trunks turning back in U-bends (../shared/data/brava-records/SOURCE.md).
+TEST_P(SharedCohort, SurfaceIsAClosedManifoldWithOneComponent) {
+  SHARED_DATA_OR_SKIP(path, "brava-records/" + GetParam());
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  const TopologyReport t = check_topology(mesh_at(g, 2).mesh);
+  EXPECT_TRUE(t.closed_manifold());
+  EXPECT_EQ(t.components, g.components);
+}
+
+// Not met yet on every tree (level 2, default options; the surface measured against the centerline as the
+// separate stage left it). Crossing: BH0004 (the separate stage leaves 171 of its crossing edge pairs),
+// BH0006 (its added points coincide where two edges of one vessel lie on one line, and the graph gains two
+// loops) and BH0009 (3 left); more than 0.2 % of the area over half a radius off the tubes: 18 trees, up
+// to 0.62 %; a face centroid over a local radius off them: 27 trees, on merged joints' hulls. Before the
+// tiling changes of this suite's commit series, 22 trees crossed themselves (21 outside overlapping
+// tubes, up to 402 pairs) and 41 had more than 0.2 % off (up to 3 %). Run with
+// --gtest_also_run_disabled_tests.
+TEST_P(SharedCohort, DISABLED_SurfaceFollowsItsTubesUncrossedWithItsGenus) {
+  SHARED_DATA_OR_SKIP(path, "brava-records/" + GetParam());
+  const CenterlineGraph g = build_graph(read_centerline(path));
+  const TriMesh mesh = mesh_at(g, 2).mesh;
+  const TopologyReport t = check_topology(mesh);
+  EXPECT_EQ(t.genus, g.loops);
+  EXPECT_EQ(find_self_intersections(mesh, &g).pairs, 0);
+  const Separation moved = separate_crossings(g, RoundCones(g));
+  const FidelityReport f = radius_fidelity(mesh, moved.moved_points > 0 ? moved.graph : g);
+  EXPECT_LE(f.area_off_tubes, 0.002);
+  EXPECT_LE(f.largest_centroid_offset, 1.0) << "at " << f.largest_centroid_offset_at.transpose();
+}
+
+INSTANTIATE_TEST_SUITE_P(BravaRecords, SharedCohort, testing::ValuesIn(cohort_files()),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });

@@ -36,6 +36,13 @@ constexpr int kSharedPositions = 15;
 constexpr int kSharedTilts = 3;
 constexpr int kSharedTries = 4;
 
+/// A free square pushed further from its joint than this many corner radii of the patch's widest branch
+/// may tilt to clear the other squares (see tilt_square).
+constexpr double kTiltFrom = 2;
+
+/// A tube's kept sections are at most this many of its sampled sections apart (see drop_folds).
+constexpr std::size_t kFoldSkip = 64;
+
 /// How a branch that meets a joint is built.
 enum class Kind {
   tube,       ///< a square at each joint end, a tube between them
@@ -53,6 +60,7 @@ struct End {
   bool stuck = false;         ///< pushed to the far end of its branch without clearing the other squares
   bool fixed = false;         ///< stub and shared squares stay where they are
   bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
+  bool tilted = false;        ///< tilted from that direction to clear the other squares (tilt_square)
   Section square;             ///< normal points away from the joint, corners counter-clockwise about it
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
 };
@@ -162,16 +170,80 @@ class Tiler {
         continue;
       }
       mark_corners(b);
-      std::size_t from = 0;
-      for (std::size_t i = 1; i <= k; ++i) {
-        if (i < k && !corner_[b.points[i]]) continue;
-        Branch piece;
-        piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
-        piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
-        branches_.push_back(std::move(piece));
-        from = i;
+      std::vector<Branch> pieces;
+      for (bool cut = true; cut;) {
+        pieces.clear();
+        std::size_t from = 0;
+        for (std::size_t i = 1; i <= k; ++i) {
+          if (i < k && !corner_[b.points[i]]) continue;
+          Branch piece;
+          piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
+          piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
+          pieces.push_back(std::move(piece));
+          from = i;
+        }
+        cut = false;
+        for (const Branch& piece : pieces) {
+          const int32_t corner = tight_bend(piece);
+          if (corner >= 0) corner_[corner] = 1, cut = true;
+        }
       }
+      branches_.insert(branches_.end(), pieces.begin(), pieces.end());
     }
+  }
+
+  /// For each section, the most sections a chain from the first to it keeps, no two kept in a row
+  /// crossing (one's square reaching across the other's plane) and none more than kFoldSkip apart; 0
+  /// where no chain gets. `from` receives each section's predecessor in its chain.
+  std::vector<int> fold_free_chains(const std::vector<Section>& sections,
+                                    std::vector<std::size_t>& from) const {
+    const std::size_t n = sections.size();
+    std::vector<int> count(n, 0);
+    from.assign(n, 0);
+    if (n == 0) return count;
+    count[0] = 1;
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = i; j-- > (i > kFoldSkip ? i - kFoldSkip : 0);)  // the nearest first, on ties
+        if (count[j] + 1 > count[i] && count[j] > 0 && !crosses(sections[j], sections[i]))
+          count[i] = count[j] + 1, from[i] = j;
+    return count;
+  }
+
+  /// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
+  /// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
+  /// reaching across the next one's plane, and a tube would fold there however its sections were
+  /// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
+  /// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
+  /// break off; −1 when they get through, or no point of the piece is there.
+  int32_t tight_bend(const Branch& piece) const {
+    const std::size_t k = piece.points.size() - 1;
+    if (k < 2) return -1;
+    const BranchCurve c = branch_curve(g_, piece);
+    const std::vector<double> arcs = sample_branch(c, 0, c.length(), opt_.sampling);
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
+      sections[i].center = c.position(arcs[i]);
+      sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
+    }
+    std::vector<std::size_t> from;
+    const std::vector<int> count = fold_free_chains(sections, from);
+    const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
+    if (broken == count.size()) return -1;
+    const double r = sections[broken].radius;
+    const double lo = arcs[broken - 1] - 2 * scale() * r, hi = arcs[broken] + 2 * r;
+    auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
+    int32_t sharpest = -1;
+    double lowest = 1;  // cosine of the turn
+    for (std::size_t i = 1; i < k; ++i) {
+      const double s = c.arc[i];
+      if (s < lo || s > hi) continue;
+      const double reach = 2 * g_.radius[piece.points[i]];
+      const Vec3 in = (c.points[i] - at(s - reach)).normalized(),
+                 out = (at(s + reach) - c.points[i]).normalized();
+      if (in.dot(out) < lowest) lowest = in.dot(out), sharpest = piece.points[i];
+    }
+    return sharpest;
   }
 
   /// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
@@ -283,11 +355,13 @@ class Tiler {
     return reach + margin;
   }
 
-  /// Pushes each free square along its branch until it is a face of the patch's hull. Stub and shared
-  /// squares stay put; a square that reaches the far end of its branch is marked stuck. A square that
-  /// the turn of its branch's tangent pushes to the far end is tried again facing along its chord: on
-  /// a short or sharply bent branch the tangent there can point back across the patch, so that the
-  /// squares keep pushing each other along, where the chord points away from the joint.
+  /// Pushes each free square along its branch until it is a face of the patch's hull; out of the reach of
+  /// the patch's widest tube, a square that has not cleared the others tilts where it stands if that
+  /// clears them (tilt_square). Stub and shared squares stay put; a square that reaches the far end of its
+  /// branch is marked stuck. A square that the turn of its branch's tangent pushes to the far end is tried
+  /// again facing along its chord: on a short or sharply bent branch the tangent there can point back
+  /// across the patch, so that the squares keep pushing each other along, where the chord points away
+  /// from the joint.
   void place_squares(const Patch& p, int attempt) {
     for (int32_t i : p.ends) ends_[i].chord = false;
     for (;;) {
@@ -302,10 +376,19 @@ class Tiler {
   }
 
   void push_squares(const Patch& p, int attempt) {
+    // Squares pushed this far from the joint (out of the widest tube's reach round it) may tilt.
+    double widest = 0;
+    for (int32_t i : p.ends) {
+      const End& e = ends_[i];
+      if (kind_[e.branch] != Kind::tunnel)
+        widest = std::max(widest, curves_[e.branch].radius_at(e.at_start ? 0 : curves_[e.branch].length()));
+    }
+    const double tilt_from = kTiltFrom * scale() * widest;
     for (int32_t i : p.ends) {
       End& e = ends_[i];
       const BranchCurve& c = curves_[e.branch];
       e.stuck = false;
+      e.tilted = false;
       e.fixed = kind_[e.branch] == Kind::stub || kind_[e.branch] == Kind::shared;
       if (kind_[e.branch] == Kind::stub) {
         e.t = c.length();
@@ -328,17 +411,71 @@ class Tiler {
       for (int32_t i : p.ends) {
         End& e = ends_[i];
         if (e.fixed || e.stuck) continue;
-        const double overlap = intrusion(e, p);
+        double overlap = intrusion(e, p);
         if (overlap <= 0) continue;
+        moved = true;
+        // A tilted square that no longer clears the others stands upright again, or tilts another way,
+        // where it is; only then does it move on.
+        if (e.tilted) {
+          e.square = square_at(e, e.t);
+          e.tilted = false;
+          if ((overlap = intrusion(e, p)) <= 0) continue;
+        }
+        if (kind_[e.branch] == Kind::tube && e.t >= tilt_from && tilt_square(e, p)) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
         const double length = travel(e);
         e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
-        moved = true;
       }
       if (!moved) return;
     }
+  }
+
+  /// Tilts the square of `e`, where it stands, from its branch's direction by the fewest steps of 15° (up to
+  /// kSharedTilts) towards one of 8 directions round it, so that the patch's other squares lie behind its
+  /// plane: of that tilt, the direction that clears them most. Facing along their branches, the squares of
+  /// two branches that run on side by side from a joint (siblings from one point in brava-records, the
+  /// legs of a U-bend at a corner joint) each have the other beside them in their plane, wherever they
+  /// stand: pushed by turns, they went on for tens of radii, and the patch's hull with them, a flat fin
+  /// between the two (fixture siblings_side_by_side). Tilted away from each other they clear. A tilt must
+  /// leave the branch's own way on, one and two corner radii further, in front of the square (tilted
+  /// across a turning branch, a square had the next 16 radii of it behind its plane, and the tube went
+  /// straight across them). Returns false, the square upright, when no tilt will do.
+  bool tilt_square(End& e, const Patch& p) {
+    const Section upright = square_at(e, e.t);
+    const Vec3 across = any_perpendicular(upright.normal);
+    // The branch's own sections one and two corner radii further on, facing along it, which a tilted
+    // square must not reach across: its tube would fold there, or drop its sections for many radii.
+    const BranchCurve& c = curves_[e.branch];
+    const double reach = scale() * upright.radius;
+    if (e.t + 2 * reach > c.length()) return false;
+    std::array<Section, 2> ahead;
+    for (int k = 0; k < 2; ++k) {
+      const double s = e.at_start ? e.t + (k + 1) * reach : c.length() - e.t - (k + 1) * reach;
+      ahead[k].center = c.position(s);
+      ahead[k].radius = c.radius_at(s);
+      ahead[k].normal = e.at_start ? c.tangent(s) : Vec3(-c.tangent(s));
+    }
+    for (int tilt = 1; tilt <= kSharedTilts; ++tilt) {
+      double best = 0;
+      Vec3 best_normal = upright.normal;
+      for (int towards = 0; towards < 8; ++towards) {
+        e.square.normal =
+            rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
+        if (crosses(e.square, ahead[0]) || crosses(e.square, ahead[1])) continue;
+        const double overlap = intrusion(e, p);
+        if (overlap < best) best = overlap, best_normal = e.square.normal;
+      }
+      if (best < 0) {
+        e.square = upright;
+        e.square.normal = best_normal;
+        e.tilted = true;
+        return true;
+      }
+    }
+    e.square = upright;
+    return false;
   }
 
   /// Where one square on branch b can close both of its joints' patches: its plane must have the
@@ -378,6 +515,30 @@ class Tiler {
         }
     }
     return best;
+  }
+
+  /// Whether the tube of branch b, between the squares at its two joints, would fold: no chain of its
+  /// sections from one square to the other gets there without one reaching across the next one's plane
+  /// (fold_free_chains). A short thick branch between two patches that face it from sides a right angle
+  /// apart folded so (brava-records BH0005). Only tubes shorter than four corner radii are looked at;
+  /// longer ones have room to turn, and their bends too tight for sections are corners already.
+  bool tube_folds(int32_t b) const {
+    const End &head = ends_[head_[b]], &tail = ends_[tail_[b]];
+    const BranchCurve& c = curves_[b];
+    const double from = head.t, to = c.length() - tail.t;
+    if (to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
+    const std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
+    std::vector<Section> sections(arcs.size());
+    for (std::size_t i = 0; i < arcs.size(); ++i) {
+      sections[i].center = c.position(arcs[i]);
+      sections[i].radius = c.radius_at(arcs[i]);
+      sections[i].normal = c.tangent(arcs[i]);
+    }
+    sections.front() = head.square;
+    sections.back() = tail.square;
+    sections.back().normal = -tail.square.normal;  // along the branch, as the others
+    std::vector<std::size_t> chain;
+    return fold_free_chains(sections, chain).back() == 0;
   }
 
   /// Whether a branch from a joint to a terminal has room for a tube after its joint square: its end lies
@@ -447,7 +608,7 @@ class Tiler {
           bool stuck = false;
           for (int32_t i : {head_[b], tail_[b]})
             if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-          if (!stuck && used <= curves_[b].length() && (both || room_for_tube(b))) continue;
+          if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b) : room_for_tube(b))) continue;
         }
         changed = true;
         if (!both) {
@@ -839,15 +1000,31 @@ class Tiler {
     if (ring) sections.back().center = sections.front().center;
   }
 
-  /// Drops the inner sections whose squares cross the plane of the section kept before them, or of the
-  /// last: the tube would fold there (a bend tighter than the corners' radius, or a joint square
-  /// facing along its chord while the branch turns). The end sections stay.
+  /// Keeps the most sections such that no two kept in a row cross (one's square reaching across the
+  /// other's plane: the tube would fold between them, on a bend tighter than the corners' radius, or where
+  /// a joint square facing along its chord meets a turning branch). The end sections stay. Dropped one
+  /// by one against the last kept, a section kept at the bottom of a U-bend, facing down its first leg,
+  /// had the whole way back up behind its plane: every later section went, and the tube became one
+  /// straight prism from end to end, through whatever lay beside the bend (brava-records' trunks;
+  /// fixture u_bend_into_a_joint). Kept sections are at most kFoldSkip apart; where no such chain reaches
+  /// the last section, sections are dropped one by one as before.
   void drop_folds(std::vector<Section>& sections) const {
-    std::vector<Section> kept{sections.front()};
-    for (std::size_t i = 1; i + 1 < sections.size(); ++i)
-      if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
-    while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
-    kept.push_back(sections.back());
+    const std::size_t n = sections.size();
+    if (n <= 2) return;
+    std::vector<std::size_t> from;
+    const std::vector<int> count = fold_free_chains(sections, from);
+    std::vector<Section> kept;
+    if (count[n - 1] > 0) {
+      for (std::size_t i = n - 1; i > 0; i = from[i]) kept.push_back(sections[i]);
+      kept.push_back(sections.front());
+      std::reverse(kept.begin(), kept.end());
+    } else {
+      kept.push_back(sections.front());
+      for (std::size_t i = 1; i + 1 < n; ++i)
+        if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
+      while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
+      kept.push_back(sections.back());
+    }
     sections = std::move(kept);
   }
 
