@@ -142,3 +142,26 @@ TEST(Separate, IsAStageOfThePipelineThatKeepLeavesOut) {
   EXPECT_EQ(separated.crossings_left, 0);
   EXPECT_GT(separated.largest_separation, 0.0);
 }
+
+// A vessel traced back along another's very line (a tracing that doubles back): the points added along
+// both where they cross must not fall on each other or on the other's points, or the graph would merge
+// them into loops the vessels do not have (brava-records BH0006 gained two).
+TEST(Separate, VesselsOnOneLineGetNoLoopFromThePointsAddedAlongThem) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    CenterlineData d = fixtures::start(Vec3(0, 0, -10) * scale, 1 * scale);
+    const int32_t joint = fixtures::run(d, 0, Vec3::Zero(), 4, 1 * scale);
+    fixtures::run(d, joint, Vec3(20, 0, 0) * scale, 4, 0.8 * scale);  // along x, points every 5
+    int32_t up = fixtures::run(d, joint, Vec3(0, 0, 12) * scale, 3, 0.8 * scale);
+    up = fixtures::run(d, up, Vec3(26, 0, 12) * scale, 4, 0.8 * scale);
+    up = fixtures::run(d, up, Vec3(26, 0, 0) * scale, 3, 0.8 * scale);
+    fixtures::run(d, up, Vec3(11, 0, 0) * scale, 3, 0.8 * scale);  // back along the first child's line
+    const CenterlineGraph g = build_graph(d);
+    ASSERT_EQ(g.loops, 0);
+    const Separation s = separate_crossings(g, RoundCones(g));
+    EXPECT_GT(s.crossings, 0) << scale;
+    EXPECT_EQ(s.graph.loops, 0) << scale;
+    const MeshResult r = mesh_centerline(g, MeshOptions());
+    EXPECT_EQ(r.verification.topology.genus, 0) << scale;
+    EXPECT_EQ(r.verification.problem(), "") << scale;
+  }
+}

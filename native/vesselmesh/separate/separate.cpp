@@ -1,8 +1,10 @@
 #include "vesselmesh/separate/separate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <queue>
 #include <set>
@@ -110,6 +112,29 @@ CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const Ro
   d.edges.reserve(g.edges.size());
   d.roots = g.roots;
   if (!g.radius_per_edge) d.radius = g.radius;
+  // A new point where another point already is (a tracing that doubles back onto its own points) would be
+  // merged with it into a loop the vessels do not have: such cuts are left out. Points hash into cells a
+  // tenth of a step wide, and a point's partners lie in the cells round its own.
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& r : g.end_radius) smallest = std::min({smallest, r[0], r[1]});
+  const double cell = 0.1 * kStep * smallest;
+  using Cell = std::array<int64_t, 3>;
+  auto cell_of = [&](const Vec3& p) {
+    return Cell{static_cast<int64_t>(std::floor(p.x() / cell)), static_cast<int64_t>(std::floor(p.y() / cell)),
+                static_cast<int64_t>(std::floor(p.z() / cell))};
+  };
+  std::map<Cell, std::vector<Vec3>> taken;
+  for (const Vec3& p : g.points) taken[cell_of(p)].push_back(p);
+  auto free_at = [&](const Vec3& p) {
+    const Cell c = cell_of(p);
+    for (int64_t i = -1; i <= 1; ++i)
+      for (int64_t j = -1; j <= 1; ++j)
+        for (int64_t k = -1; k <= 1; ++k)
+          if (const auto it = taken.find({c[0] + i, c[1] + j, c[2] + k}); it != taken.end())
+            for (const Vec3& q : it->second)
+              if ((q - p).norm() < cell) return false;
+    return true;
+  };
   for (std::size_t e = 0; e < g.edges.size(); ++e) {
     std::vector<double>& at = cuts[e];
     std::sort(at.begin(), at.end());
@@ -121,7 +146,10 @@ CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const Ro
     double last = 0;
     for (double u : at) {
       if (u - last < close) continue;
-      d.points.push_back(g.points[a] + u * (g.points[b] - g.points[a]));
+      const Vec3 p = g.points[a] + u * (g.points[b] - g.points[a]);
+      if (!free_at(p)) continue;
+      taken[cell_of(p)].push_back(p);
+      d.points.push_back(p);
       if (!g.radius_per_edge) d.radius.push_back(ra + u * (rb - ra));
       const int32_t point = static_cast<int32_t>(d.points.size()) - 1;
       d.edges.push_back({from, point});
