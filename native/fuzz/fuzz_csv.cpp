@@ -15,7 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     CenterlineData centerline =
         parse_csv_graph(vertices, "fuzz_vertices.csv", edges, "fuzz_edges.csv", ReadOptions{});
     fuzz::check_centerline(centerline, "fuzz_vertices.csv");
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    fuzz::refused(e);
   }
   return 0;
 }

@@ -15,9 +15,10 @@
 //   then per point i >= 1: its parent, b % i (a tree); per extra edge: two points, b % n each
 //   then per edge (radius per edge): its radius
 //
-//   a value is one selector byte s: s < 0xC0 a grid value, (s - 96) / 4 for a coordinate, (s + 1) / 64 for a
-//   radius; 0xC0..0xEF an extreme value from kSpecial; 0xF0..0xF7 a raw little-endian double in the next
-//   8 bytes; 0xF8..0xFF the previous point's coordinate (or radius) plus (s - 0xFB) * 1e-7 of it.
+//   a value is one selector byte s: s < 0xC0 a grid value, (s - 96) / 16 for a coordinate (-6 to 6),
+//   (s + 8) / 32 for a radius (0.25 to 6.2), so that plain values give edges at most ~80 radii long;
+//   0xC0..0xEF an extreme value from kSpecial; 0xF0..0xF7 a raw little-endian double in the next 8 bytes;
+//   0xF8..0xFF the previous point's coordinate (or radius) plus (s - 0xFB) * 1e-7 of it.
 //   Bytes past the end read as 0.
 //
 // Only InputError may leave: validate() and build_graph() refusing an input is fine; anything else
@@ -38,54 +39,17 @@ namespace {
 
 using namespace vesselmesh;
 
-constexpr double kSpecial[48] = {0.0,
-                                 -0.0,
-                                 1e300,
-                                 -1e300,
-                                 1e-300,
-                                 -1e-300,
-                                 4.9406564584124654e-324,
-                                 2.2250738585072009e-308,
-                                 DBL_MAX,
-                                 -DBL_MAX,
-                                 DBL_MIN,
-                                 1e308,
-                                 1e154,
-                                 1e-154,
-                                 2e8,
-                                 -2e8,
-                                 1e8,
-                                 -1e8,
-                                 1e15,
-                                 -1e15,
-                                 1e-15,
-                                 1e-8,
-                                 1e-12,
-                                 1e6,
-                                 1e-6,
-                                 1e12,
-                                 1e20,
-                                 1e-20,
-                                 1e100,
-                                 1e-100,
-                                 1.0 + DBL_EPSILON,
-                                 1.0 - DBL_EPSILON / 2,
-                                 0.5,
-                                 1.0,
-                                 2.0,
-                                 3.0,
-                                 1e3,
-                                 -1e3,
-                                 1e-3,
-                                 4e9,
-                                 9007199254740992.0,
-                                 9007199254740993.0 * 2,
-                                 2147483648.0,
-                                 -2147483649.0,
-                                 1e-310,
-                                 3e-320,
-                                 65504.0,
-                                 1e10};
+// clang-format off
+/// Extreme values, selected by 0xC0 + index (0xC4: 1e-300, 0xCE: 2e8, 0xE6: 1e-3, ...).
+constexpr double kSpecial[48] = {
+    0.0,     -0.0,     1e300,   -1e300,  1e-300,  -1e-300,  4.9406564584124654e-324 /* least denormal */,
+    2.2250738585072009e-308 /* largest denormal */, DBL_MAX, -DBL_MAX, DBL_MIN, 1e308, 1e154, 1e-154,
+    2e8,     -2e8,     1e8,     -1e8,    1e15,    -1e15,    1e-15,   1e-8,    1e-12,   1e6,  // 14..23
+    1e-6,    1e12,     1e20,    1e-20,   1e100,   1e-100,   1.0 + DBL_EPSILON, 1.0 - DBL_EPSILON / 2,  // 24..31
+    0.5,     1.0,      2.0,     3.0,     1e3,     -1e3,     1e-3,    4e9,  // 32..39
+    9007199254740992.0 /* 2^53 */, 18014398509481986.0, 2147483648.0, -2147483649.0, 1e-310, 3e-320,
+    65504.0, 1e10};  // 40..47
+// clang-format on
 
 class Bytes {
  public:
@@ -98,7 +62,7 @@ class Bytes {
   /// A value as the header comment says; `previous` is the same quantity of the previous point.
   double value(bool radius, double previous) {
     const uint8_t s = next();
-    if (s < 0xC0) return radius ? (s + 1) / 64.0 : (s - 96) / 4.0;
+    if (s < 0xC0) return radius ? (s + 8) / 32.0 : (s - 96) / 16.0;
     if (s < 0xF0) return kSpecial[s - 0xC0];
     if (s < 0xF8) {
       uint64_t bits = 0;
@@ -172,7 +136,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         std::fprintf(stderr, "==fuzz_pipeline: a non-finite vertex in the output surface\n");
         std::abort();
       }
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    fuzz::refused(e);
   }
   return 0;
 }

@@ -6,6 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
@@ -28,6 +30,13 @@ inline void check_centerline(const CenterlineData& data, const std::string& sour
       graph.end_radius.size() != graph.edges.size() || graph.incident.size() != 2 * graph.edges.size() ||
       graph.component.size() != graph.points.size())
     __builtin_trap();
+}
+
+/// An input refused with an InputError, as it should be; with FUZZ_VERBOSE set, the message is printed
+/// (to see why a seed or a saved input is refused: FUZZ_VERBOSE=1 build/fuzz/bin/fuzz_vtp file.vtp).
+inline void refused(const InputError& e) {
+  static const bool verbose = std::getenv("FUZZ_VERBOSE") != nullptr;
+  if (verbose) std::fprintf(stderr, "InputError: %s\n", e.what());
 }
 
 }  // namespace vesselmesh::fuzz

@@ -156,33 +156,33 @@ def csv():
 
 
 def pipeline():
-    def value_grid(v):  # coordinates on the grid (s - 96) / 4
-        return bytes([int(v * 4) + 96])
+    def value_grid(v):  # coordinates on the grid (s - 96) / 16
+        return bytes([round(v * 16) + 96])
 
-    def radius_grid(r):  # radii (s + 1) / 64
-        return bytes([int(r * 64) - 1])
+    def radius_grid(r):  # radii (s + 8) / 32
+        return bytes([round(r * 32) - 8])
 
     # Structured mode: the Y, radius per point, levels 1, separate, flat caps, fit onto, curvature.
     y = bytes([0b01000010, len(POINTS) - 2, 0])
     for p, r in zip(POINTS, RADII):
-        y += b"".join(value_grid(c / 2) for c in p) + radius_grid(r / 2)
+        y += b"".join(value_grid(c / 4) for c in p) + radius_grid(r / 2)
     y += bytes([0, 1, 1])  # parents of points 1, 2, 3
     write("pipeline", "y_level1.bin", y)
-    # A ring with a tail, radius per edge, two extra edges, open caps, no fit, level 0.
+    # A ring with a chord and a tail, radius per edge, open caps, no fit, level 0.
     ring = bytes([0b00101000, 3, 0b0000101])
-    for p in [(0, 0, 0), (8, 0, 0), (8, 8, 0), (0, 8, 0), (-6, 0, 0)]:
+    for p in [(0, 0, 0), (4, 0, 0), (4, 4, 0), (0, 4, 0), (-3, 0, 0)]:
         ring += b"".join(value_grid(c) for c in p)
-    ring += bytes([0, 1, 2, 0]) + bytes([3, 0, 2, 3])
-    ring += b"".join(radius_grid(r) for r in [1, 1, 0.8, 0.8, 1.2, 0.5])
+    ring += bytes([0, 1, 2, 0]) + bytes([3, 0, 1, 3])  # tree edges, then 3-0 (the ring) and 1-3 (a chord)
+    ring += b"".join(radius_grid(r) for r in [0.5, 0.5, 0.4, 0.4, 0.6, 0.25])
     write("pipeline", "ring_tail_edge_radius.bin", ring)
-    # Values from the table of extremes: radius 1 at one end of an edge 8 long, 1e-3 (selector 0xE6)
+    # Values from the table of extremes: radius 1 at one end of an edge 2 long, 1e-3 (selector 0xE6)
     # at the other, and a point 1e-3 off its end with radius 0.5 (0xE0). (The seeds must run clean:
     # extremes that break the pipeline today are one mutation away.)
-    ext = bytes([0b00000010, 1, 0]) + bytes([96, 96, 96, 0x3F]) + bytes([128, 96, 96, 0xE6])
+    ext = bytes([0b00000010, 1, 0]) + bytes([96, 96, 96, 24]) + bytes([128, 96, 96, 0xE6])
     ext += bytes([128, 0xE6, 96, 0xE0]) + bytes([0, 1])
     write("pipeline", "extreme_values.bin", ext)
-    raw = bytes([0b00000000, 0, 0]) + bytes([96, 96, 96, 0x3F, 0xF0]) + struct.pack("<d", 1e-3)
-    raw += bytes([96, 96, 0x3F, 0xFC, 0])
+    raw = bytes([0b00000000, 0, 0]) + bytes([96, 96, 96, 24, 0xF0]) + struct.pack("<d", 1e-3)
+    raw += bytes([96, 96, 24, 0xFC, 0])
     write("pipeline", "raw_double_near_coincident.bin", raw)
     # SWC mode.
     write("pipeline", "swc_y.bin", b"\x03" + b"1 1 0 0 0 2 -1\n2 3 0 0 10 1.8 1\n3 3 6 0 18 1 2\n4 3 -6 0 18 1.2 2\n")
