@@ -836,6 +836,34 @@ TEST(ReadVtp, AbsurdCountsMatchingAnAbsurdHeaderAreRejectedBeforeAllocating) {
                    "the data ends here, short of the 12000000008 bytes"));
 }
 
+// Every count the reader sizes something by (NumberOfPoints, NumberOfLines, the last offset, byte
+// counts in headers), set to hundreds of millions in a small file of each encoding: an
+// InputError, and no allocation much beyond the file's own size.
+TEST(ReadVtp, NoCountIsAllocatedBeforeTheBytesThatHoldItAreChecked) {
+  std::vector<std::string> files;
+  for (const Encoding& e : kEncodings) {
+    const std::string text = sample_file(e);
+    files.push_back(replaced(text, "NumberOfPoints=\"6\"", "NumberOfPoints=\"300000000\""));
+    files.push_back(replaced(text, "NumberOfLines=\"2\"", "NumberOfLines=\"300000000\""));
+  }
+  files.push_back(replaced(sample_file(kAscii), "4 6\n", "4 300000000\n"));
+  files.push_back(
+      with_points_content(base64(header_words({3000000000u}, kBinary) + sample_points_bytes()), kBinary));
+  Compressed c = compress(sample_points_bytes(), 32768);
+  c.header[1] = c.header[2] = c.header[3] * 1032;  // as much as zlib could give: 72 bytes are there
+  files.push_back(with_points_content(stored(c, kBinaryZlib)));
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file.substr(0, 300));
+    LargestAllocation largest;
+    try {
+      parse(file);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError&) {
+    }
+    EXPECT_LT(largest.bytes(), 64 * 1024 + 4 * file.size());
+  }
+}
+
 TEST(ReadVtp, OffsetsThatDecreaseOrGoOutOfRangeAreRejected) {
   const std::string base = sample_file(kAscii);
   const std::string offsets = "Name=\"offsets\"";
