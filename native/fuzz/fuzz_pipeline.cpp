@@ -116,14 +116,15 @@ CenterlineData decode(Bytes& in, MeshOptions& options) {
 /// most 1000 times its smallest radius long (the smoothing costs grow with the square of length over
 /// radius, and denormal or zero radii make that infinite), and no edge shorter than 1e-3 of the larger
 /// radius at its ends (the smoothing kernel of a branch shorter than its radius spans 8 radius / length
-/// samples). FUZZ_SKIP_KNOWN=1
+/// samples), and none of length 0 (coincident points stay apart when the merge tolerance, 1e-6 of a
+/// denormal radius, underflows to 0). FUZZ_SKIP_KNOWN=1
 /// skips the others so that a run finds what else there is.
 bool clear_of_known_issues(const CenterlineGraph& graph) {
   double length = 0, smallest = std::numeric_limits<double>::infinity();
   for (std::size_t e = 0; e < graph.edges.size(); ++e) {
     const double l = (graph.points[graph.edges[e][0]] - graph.points[graph.edges[e][1]]).norm();
     const auto [r0, r1] = graph.end_radius[e];
-    if (!(l >= 1e-3 * std::max(r0, r1))) return false;
+    if (!(l > 0 && l >= 1e-3 * std::max(r0, r1))) return false;
     length += l;
     smallest = std::min({smallest, r0, r1});
   }
