@@ -6,13 +6,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -25,10 +28,40 @@
 #include "vesselmesh/read/text.hpp"
 #include "vesselmesh/write/centerline_vtk.hpp"
 
+// Allocation probe: this test program's operator new notes the largest single request made while a
+// LargestAllocation is alive, so that a test can show that the reader did not allocate what a count claims.
+namespace {
+std::atomic<bool> g_probing{false};
+std::atomic<std::size_t> g_largest{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_probing.load(std::memory_order_relaxed)) {
+    std::size_t seen = g_largest.load(std::memory_order_relaxed);
+    while (n > seen && !g_largest.compare_exchange_weak(seen, n, std::memory_order_relaxed)) {
+    }
+  }
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
 namespace vesselmesh {
 namespace {
 
 const std::string kSource = "fixture.vtk";
+
+/// The largest single operator new request made during its life.
+class LargestAllocation {
+ public:
+  LargestAllocation() {
+    g_largest = 0;
+    g_probing = true;
+  }
+  ~LargestAllocation() { g_probing = false; }
+  std::size_t bytes() const { return g_largest; }
+};
 
 CenterlineData parse(const std::string& bytes, const std::string& radius_array = "") {
   ReadOptions options;
@@ -569,6 +602,40 @@ TEST(ReadVtk, AbsurdBinaryCountIsRejectedBeforeAllocating) {
   // tuples x components overflows 64 bits.
   EXPECT_TRUE(
       FailsWith(with(f.bytes, "radius 1 2 float", "radius 9000000000000000000 2 float"), {"truncated"}));
+}
+
+// Every count the reader sizes something by (points, cells, cell list, offsets, connectivity, cell types,
+// point and cell data, FIELD arrays and their tuples and components, lookup tables), set to hundreds of
+// millions in a file of a few hundred bytes: an InputError, and no allocation of more than a few kB.
+TEST(ReadVtk, NoCountIsAllocatedBeforeTheBytesThatHoldItAreChecked) {
+  const std::string binary = binary_lines().bytes, grid = binary_grid().bytes;
+  const std::vector<std::string> files = {
+      with(ascii_lines(), "POINTS 3 float", "POINTS 300000000 float"),
+      with(ascii_lines(), "LINES 1 4", "LINES 100000000 4"),
+      with(ascii_lines(), "LINES 1 4", "LINES 1 400000000"),
+      with(ascii_lines(), "POINT_DATA 3", "POINT_DATA 300000000"),
+      ascii_lines() + "LOOKUP_TABLE big 100000000\n",
+      with(ascii_offsets(), "LINES 3 5", "LINES 300000000 5"),
+      with(ascii_offsets(), "LINES 3 5", "LINES 3 500000000"),
+      with(with(ascii_offsets(), "CELL_DATA 2", "CELL_DATA 200000000"), "radius 1 2", "radius 1 200000000"),
+      with(ascii_offsets(), "radius 1 2", "radius 100000000 2"),
+      with(ascii_offsets(), "FIELD FieldData 1", "FIELD FieldData 100000000"),
+      with(ascii_grid(), "CELLS 3 9", "CELLS 3 900000000"),
+      with(ascii_grid(), "CELL_TYPES 3", "CELL_TYPES 300000000"),
+      with(binary, "POINTS 3 float", "POINTS 300000000 float"),
+      with(binary, "LINES 2 6", "LINES 2 600000000"),
+      with(binary, "radius 1 2 float", "radius 1 200000000 float"),
+      with(grid, "CELLS 3 4", "CELLS 300000000 4"),
+      with(grid, "CELLS 3 4", "CELLS 3 400000000"),
+      with(grid, "CELL_TYPES 2", "CELL_TYPES 200000000"),
+      with(grid, "POINT_DATA 3", "POINT_DATA 300000000"),
+  };
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file.substr(0, 200));
+    LargestAllocation largest;
+    EXPECT_THROW(parse(file), InputError);
+    EXPECT_LT(largest.bytes(), 4096u);
+  }
 }
 
 TEST(ReadVtk, TruncatedAsciiPointsNameTheLineWhereTheFileEnds) {

@@ -2,10 +2,13 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <random>
 #include <string>
 #include <vector>
@@ -14,8 +17,40 @@
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/read/read.hpp"
 
+// ---------------------------------------------------------------------------------------------------
+// Allocation probe: this test program's operator new notes the largest single request made while a
+// LargestAllocation is alive, so that a test can show that a reader did not allocate what a file claims.
+
+namespace {
+std::atomic<bool> g_probing{false};
+std::atomic<std::size_t> g_largest{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_probing.load(std::memory_order_relaxed)) {
+    std::size_t seen = g_largest.load(std::memory_order_relaxed);
+    while (n > seen && !g_largest.compare_exchange_weak(seen, n, std::memory_order_relaxed)) {
+    }
+  }
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
 namespace vesselmesh {
 namespace {
+
+/// The largest single operator new request made during its life.
+class LargestAllocation {
+ public:
+  LargestAllocation() {
+    g_largest = 0;
+    g_probing = true;
+  }
+  ~LargestAllocation() { g_probing = false; }
+  std::size_t bytes() const { return g_largest; }
+};
 
 const std::string kSource = "fixture.vtp";
 
@@ -756,6 +791,16 @@ TEST(ReadVtp, ZlibBlockWithBytesAfterItsStreamIsRejected) {
   EXPECT_TRUE(Says(error_of(text), at_byte(data), "compressed block 0 has 4 bytes after its zlib stream"));
 }
 
+TEST(ReadVtp, ZlibBlockCutShortIsRejected) {
+  Compressed c = compress(sample_points_bytes(), 32768);
+  c.blocks[0].resize(c.blocks[0].size() - 6);  // the Adler-32 check and the last bytes of data
+  c.header[3] = c.blocks[0].size();
+  const std::string content = stored(c, kBinaryZlib);
+  const std::string text = with_points_content(content);
+  const std::size_t data = text.find(content) + base64(header_words(c.header, kBinaryZlib)).size();
+  EXPECT_TRUE(Says(error_of(text), at_byte(data), "compressed block 0 ends before its zlib stream does"));
+}
+
 TEST(ReadVtp, CompressedSizesPastTheEndOfTheDataAreRejected) {
   Compressed c = compress(sample_points_bytes(), 32768);
   c.header[3] += 1000;
@@ -789,6 +834,34 @@ TEST(ReadVtp, AbsurdCountsMatchingAnAbsurdHeaderAreRejectedBeforeAllocating) {
       replaced(with_points_content(content, e), "NumberOfPoints=\"6\"", "NumberOfPoints=\"1000000000\"");
   EXPECT_TRUE(Says(error_of(text), at_byte(text.find(content) + content.size()),
                    "the data ends here, short of the 12000000008 bytes"));
+}
+
+// Every count the reader sizes something by (NumberOfPoints, NumberOfLines, the last offset, byte
+// counts in headers), set to hundreds of millions in a small file of each encoding: an
+// InputError, and no allocation much beyond the file's own size.
+TEST(ReadVtp, NoCountIsAllocatedBeforeTheBytesThatHoldItAreChecked) {
+  std::vector<std::string> files;
+  for (const Encoding& e : kEncodings) {
+    const std::string text = sample_file(e);
+    files.push_back(replaced(text, "NumberOfPoints=\"6\"", "NumberOfPoints=\"300000000\""));
+    files.push_back(replaced(text, "NumberOfLines=\"2\"", "NumberOfLines=\"300000000\""));
+  }
+  files.push_back(replaced(sample_file(kAscii), "4 6\n", "4 300000000\n"));
+  files.push_back(
+      with_points_content(base64(header_words({3000000000u}, kBinary) + sample_points_bytes()), kBinary));
+  Compressed c = compress(sample_points_bytes(), 32768);
+  c.header[1] = c.header[2] = c.header[3] * 1032;  // as much as zlib could give: 72 bytes are there
+  files.push_back(with_points_content(stored(c, kBinaryZlib)));
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file.substr(0, 300));
+    LargestAllocation largest;
+    try {
+      parse(file);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError&) {
+    }
+    EXPECT_LT(largest.bytes(), 64 * 1024 + 4 * file.size());
+  }
 }
 
 TEST(ReadVtp, OffsetsThatDecreaseOrGoOutOfRangeAreRejected) {
@@ -913,6 +986,84 @@ TEST(ReadVtp, RadiusPerPointInOnePieceAndPerCellInAnotherIsRejected) {
   const std::size_t second = text.find("<Piece", text.find("<Piece") + 1);
   EXPECT_TRUE(Says(error_of(text), at_byte(text.rfind("<DataArray", text.find("Name=\"Radius\"", second))),
                    "gives the radius per cell; an earlier piece gives it per point"));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Compression headers that claim more than the data holds (a "zlib bomb"): the reader must report the
+// bad block without first allocating what the header claims.
+
+/// A Piece of `points` points whose <Points> array is appended raw, compressed as `blocks` zlib blocks
+/// that each claim `block_size` bytes; the rest of the piece is ascii. Returns the file and sets
+/// `data_at` to the byte offset of the first block's data.
+std::string bomb_file(uint64_t points, const std::vector<std::string>& blocks, uint64_t block_size,
+                      std::size_t& data_at) {
+  std::vector<uint64_t> header = {blocks.size(), block_size, 0};
+  std::string packed;
+  for (const std::string& block : blocks) {
+    header.push_back(block.size());
+    packed += block;
+  }
+  const std::string head =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n<PolyData>\n<Piece NumberOfPoints=\"" +
+      std::to_string(points) +
+      "\" NumberOfLines=\"1\">\n<PointData><DataArray type=\"Float32\" Name=\"Radius\" format=\"ascii\">1 1"
+      "</DataArray></PointData>\n<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+      "format=\"appended\" offset=\"0\"/></Points>\n<Lines><DataArray type=\"Int64\" Name=\"connectivity\" "
+      "format=\"ascii\">0 1</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">2"
+      "</DataArray></Lines>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  const std::string words = header_words(header, kAppendedRawZlib);
+  data_at = head.size() + words.size();
+  return head + words + packed + "\n</AppendedData>\n</VTKFile>\n";
+}
+
+// 240 blocks of 991 bytes, each claiming 1,000,000 (within zlib's 1032:1): 240 MB for 20 million points
+// from a 240 kB file. The first block inflates to 1,000 bytes and ends.
+TEST(ReadVtp, ZlibBombIsRejectedWithoutAllocatingWhatItsHeaderClaims) {
+  constexpr uint64_t kClaimed = 1000000;
+  const std::string first = deflate(std::string(1000, '\0'));
+  std::vector<std::string> blocks(240, std::string(991, '\xff'));
+  blocks[0] = first + std::string(991 - first.size(), '\0');
+  std::size_t data_at = 0;
+  const std::string text = bomb_file(20000000, blocks, kClaimed, data_at);
+  LargestAllocation largest;
+  EXPECT_TRUE(
+      Says(error_of(text), at_byte(data_at),
+           "<Points> DataArray: compressed block 0 inflates to 1000 bytes; the header gives 1000000"));
+  EXPECT_LT(largest.bytes(), 4 * text.size()) << "the reader allocated what the header claims";
+}
+
+// The same header with four true blocks of a million zeros before a corrupt one: memory grows with the
+// data that inflates (4 MB), not with the 240 MB claimed.
+TEST(ReadVtp, ZlibBombMemoryGrowsOnlyWithTheDataThatInflates) {
+  constexpr uint64_t kClaimed = 1000000;
+  const std::string zeros = deflate(std::string(kClaimed, '\0'));
+  ASSERT_LE(kClaimed, zeros.size() * 1032);
+  std::vector<std::string> blocks(240, std::string(zeros.size(), '\xff'));
+  for (int b = 0; b < 4; ++b) blocks[b] = zeros;
+  std::size_t data_at = 0;
+  const std::string text = bomb_file(20000000, blocks, kClaimed, data_at);
+  LargestAllocation largest;
+  EXPECT_TRUE(Says(error_of(text), at_byte(data_at + 4 * zeros.size()),
+                   "<Points> DataArray: compressed block 4 is not valid zlib data"));
+  EXPECT_LT(largest.bytes(), 16 * kClaimed) << "the reader allocated what the header claims";
+}
+
+// Blocks far larger than the reader's first 64 KiB of output room (1 MB and 200 kB) inflate whole and in
+// order.
+TEST(ReadVtp, BlocksOfAMegabyteInflateWhole) {
+  Piece p = sample();
+  p.points.values.assign(3 * 100000, 0.0);
+  for (std::size_t i = 0; i < p.points.values.size(); i += 3) p.points.values[i] = static_cast<double>(i / 3);
+  p.connectivity.values = {0, 99999};
+  p.offsets.values = {2};
+  p.point_data = {{"Radius", "Float32", 1, std::vector<double>(100000, 1.0)}};
+  p.cell_data.clear();
+  const Encoding e{"appended raw zlib, 1 MB blocks", Format::kAppended, true, true, false, false, 1000000};
+  const CenterlineData data = parse(Writer(e).file({p}));
+  ASSERT_EQ(data.points.size(), 100000u);
+  EXPECT_EQ(data.points[99999].x(), 99999.0);
+  EXPECT_EQ(data.edges, (std::vector<Edge>{{0, 99999}}));
 }
 
 // ---------------------------------------------------------------------------------------------------

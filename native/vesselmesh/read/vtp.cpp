@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <optional>
 #include <pugixml.hpp>
 #include <string>
@@ -27,7 +28,8 @@ namespace {
 constexpr int64_t kMaxCount = std::numeric_limits<int32_t>::max();
 
 /// Deflate expands at most 1032:1, so a block that claims more than this many bytes per compressed
-/// byte is a lie; checking it first bounds every allocation by the size of the input.
+/// byte is a lie, rejected before anything is inflated. A claim within the ratio may still be a lie:
+/// the inflated data is what the output buffer grows with (inflate_block).
 constexpr uint64_t kMaxInflateRatio = 1032;
 
 /// Offsets of pugixml nodes must be byte offsets of the file: no end-of-line conversion.
@@ -93,6 +95,64 @@ std::string shown(char c) {
   if (code > ' ' && code < 127) return std::string("'") + c + "'";
   const char* hex = "0123456789ABCDEF";
   return std::string("byte 0x") + hex[code >> 4] + hex[code & 15];
+}
+
+/// Inflates one zlib block that must give exactly `size` bytes and appends them to `out`. The buffer
+/// grows with what the block really gives, at most doubling `out` (or by 64 KiB) at a time, so a block
+/// whose header claims more than its data holds costs no more memory than that data. Returns "" or what
+/// is wrong with the block.
+std::string inflate_block(std::string_view block, uint64_t size, std::string& out) {
+  constexpr uint64_t kFirstChunk = 64 * 1024;
+  constexpr uint64_t kMaxPass = std::numeric_limits<uInt>::max();  // zlib counts in uInt
+  z_stream z{};
+  if (inflateInit(&z) != Z_OK) throw std::bad_alloc();
+  struct End {
+    z_stream& z;
+    ~End() { inflateEnd(&z); }
+  } end{z};
+  std::size_t fed = 0;  // bytes of `block` handed to zlib
+  const auto feed = [&] {
+    if (z.avail_in != 0 || fed == block.size()) return;
+    const auto n = static_cast<uInt>(std::min<uint64_t>(block.size() - fed, kMaxPass));
+    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(block.data() + fed));
+    z.avail_in = n;
+    fed += n;
+  };
+  const auto unread = [&] { return block.size() - fed + z.avail_in; };
+  const std::size_t start = out.size();
+  uint64_t produced = 0;
+  int rc = Z_OK;
+  while (produced < size) {
+    feed();
+    const uint64_t room = std::min({size - produced, std::max<uint64_t>(kFirstChunk, out.size()), kMaxPass});
+    out.resize(start + static_cast<std::size_t>(produced + room));
+    z.next_out = reinterpret_cast<Bytef*>(&out[start + static_cast<std::size_t>(produced)]);
+    z.avail_out = static_cast<uInt>(room);
+    rc = inflate(&z, Z_NO_FLUSH);
+    produced += room - z.avail_out;
+    out.resize(start + static_cast<std::size_t>(produced));
+    if (rc == Z_STREAM_END) break;
+    if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT) return "is not valid zlib data";
+    if (rc == Z_MEM_ERROR) throw std::bad_alloc();
+    if (rc == Z_BUF_ERROR && unread() == 0) return "ends before its zlib stream does";
+    if (rc != Z_OK) return "cannot be inflated (zlib error " + std::to_string(rc) + ")";
+  }
+  while (rc != Z_STREAM_END) {  // all `size` bytes are out: the stream must end without giving more
+    feed();
+    unsigned char extra;
+    z.next_out = &extra;
+    z.avail_out = 1;
+    rc = inflate(&z, Z_NO_FLUSH);
+    if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT) return "is not valid zlib data";
+    if (z.avail_out == 0)
+      return "inflates to more than the " + std::to_string(size) + " bytes that the header gives";
+    if (rc == Z_BUF_ERROR && unread() == 0) return "ends before its zlib stream does";
+    if (rc != Z_OK && rc != Z_STREAM_END) return "cannot be inflated (zlib error " + std::to_string(rc) + ")";
+  }
+  if (produced != size)
+    return "inflates to " + std::to_string(produced) + " bytes; the header gives " + std::to_string(size);
+  if (unread() != 0) return "has " + std::to_string(unread()) + " bytes after its zlib stream";
+  return "";
 }
 
 /// Where an array's binary data lies: base64 text (inline, or appended with encoding="base64") or raw
@@ -564,32 +624,17 @@ class VtpReader {
            what + ": the compression header gives " + std::to_string(total) + " bytes; expected " + expected);
 
     const std::string packed = take(s, data_pos, packed_total, true, what);
-    std::string out(static_cast<std::size_t>(n), '\0');
-    std::size_t in_pos = 0, out_pos = 0;
+    // The output grows as blocks inflate, not to the header's total up front: a header may claim up to
+    // 1032 bytes per compressed byte, and only the inflated data shows whether that is true.
+    std::string out;
+    std::size_t in_pos = 0;
     for (std::size_t b = 0; b < sizes.size(); ++b) {
-      uLongf out_len = static_cast<uLongf>(sizes[b]);
-      uLong in_len = static_cast<uLong>(packed_sizes[b]);
-      const int rc = uncompress2(reinterpret_cast<Bytef*>(&out[out_pos]), &out_len,
-                                 reinterpret_cast<const Bytef*>(packed.data() + in_pos), &in_len);
-      std::string problem;
-      if (rc == Z_DATA_ERROR)
-        problem = "is not valid zlib data";
-      else if (rc == Z_BUF_ERROR && out_len == sizes[b])
-        problem = "inflates to more than the " + std::to_string(sizes[b]) + " bytes that the header gives";
-      else if (rc == Z_BUF_ERROR)
-        problem = "ends before its zlib stream does";
-      else if (rc != Z_OK)
-        problem = "cannot be inflated (zlib error " + std::to_string(rc) + ")";
-      else if (out_len != sizes[b])
-        problem =
-            "inflates to " + std::to_string(out_len) + " bytes; the header gives " + std::to_string(sizes[b]);
-      else if (in_len != packed_sizes[b])
-        problem = "has " + std::to_string(packed_sizes[b] - in_len) + " bytes after its zlib stream";
+      const std::string_view block(packed.data() + in_pos, static_cast<std::size_t>(packed_sizes[b]));
+      const std::string problem = inflate_block(block, sizes[b], out);
       if (!problem.empty())
         fail(file_offset(s, data_pos, in_pos),
              what + ": compressed block " + std::to_string(b) + " " + problem);
-      in_pos += static_cast<std::size_t>(packed_sizes[b]);
-      out_pos += static_cast<std::size_t>(sizes[b]);
+      in_pos += block.size();
     }
     return {std::move(out), data_pos + span(s, packed_total)};
   }
