@@ -21,7 +21,8 @@
 //   0xF8..0xFF the previous point's coordinate (or radius) plus (s - 0xFB) * 1e-7 of it.
 //   Bytes past the end read as 0.
 //
-// Only InputError may leave: validate() and build_graph() refusing an input is fine; anything else
+// Only InputError and SizeLimitError may leave: validate() and build_graph() refusing an input, or the
+// pipeline refusing a surface over its triangle limit, is fine; anything else
 // (another exception, a sanitizer report, a timeout, running out of memory) is a finding, and so is a
 // non-finite vertex in the output surface. With FUZZ_SKIP_KNOWN=1 set, graphs in the classes of the
 // known findings (clear_of_known_issues) are skipped after build_graph().
@@ -161,6 +162,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
       }
   } catch (const InputError& e) {
     fuzz::refused(e);
+  } catch (const SizeLimitError&) {
+    // A surface over the triangle limit is refused before the work: what the limit is for.
   }
   return 0;
 }

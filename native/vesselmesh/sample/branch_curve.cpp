@@ -73,7 +73,9 @@ std::vector<T> at_points(const BranchCurve& c, const Resampled& r, const std::ve
 /// linear in its points whatever its length in radii.
 void smoothed_differentials(BranchCurve& c, bool ring) {
   const double mean_edge = c.length() / static_cast<double>(c.points.size() - 1);
-  const double sigma = std::max(c.median_radius, mean_edge);
+  // No wider than the branch: a branch shorter than its radius has no bend to smooth, and a kernel wider
+  // than the branch only reaches past its (reflected) ends.
+  const double sigma = std::min(std::max(c.median_radius, mean_edge), c.length());
   const double step = std::max(std::min(mean_edge, 0.25 * c.median_radius), sigma / 32);
   const Resampled r = resample(c, ring, step, 4.0 * sigma);
   const int half = r.half;
