@@ -41,10 +41,12 @@ struct Spacing {
 std::optional<double> step(const Spacing& sp, double s, double limit) {
   const BranchCurve& c = sp.curve;
   const bool forward = limit > s;
-  const double stride = forward ? sp.g(s) : -sp.g(s);
+  double stride = forward ? sp.g(s) : -sp.g(s);
   double previous = s;
   // Candidate bracket ends: the curve's points strictly between s and limit, then limit itself; at most
-  // a stride apart, so that an edge thousands of radii long costs a few strides, not a long bisection.
+  // a stride apart, the stride doubling each time, so that an edge thousands of radii long costs a few
+  // strides, not a long bisection, and a radius that grows faster than the way along (no root there) a
+  // few dozen, not one per radius of the start.
   std::size_t i = c.segment(s);
   auto next_knot = [&]() -> double {
     if (forward) {
@@ -56,6 +58,7 @@ std::optional<double> step(const Spacing& sp, double s, double limit) {
   };
   while (previous != limit) {
     const double t = next_knot();
+    stride *= 2;
     if (sp.gap(s, t) >= 0.0) {
       double lo = previous, hi = t;  // gap(lo) < 0 ≤ gap(hi)
       for (int it = 0; it < 60 && std::abs(hi - lo) > 1e-12 * c.length(); ++it) {
