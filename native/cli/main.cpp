@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
     if (*info) {
       ReadOptions options;
       options.radius_array = radius_array;
-      const CenterlineGraph graph = build_graph(read_centerline(info_file, options));
+      const CenterlineGraph graph = build_graph(read_centerline(info_file, options), info_file);
       if (json)
         std::cout << summary_json(graph) << "\n";
       else
@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
     } else if (*mesh) {
       ReadOptions options;
       options.radius_array = radius_array;
-      const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options));
+      const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options), mesh_in);
       const MeshResult result = mesh_centerline(graph, mesh_options);
       write_mesh(result.mesh, mesh_out);
       const Verification& v = result.verification;
@@ -249,7 +249,7 @@ int main(int argc, char** argv) {
     } else if (*check) {
       const TriMesh surface = read_mesh(check_in);
       std::optional<CenterlineGraph> graph;
-      if (!check_centerline.empty()) graph = build_graph(read_centerline(check_centerline));
+      if (!check_centerline.empty()) graph = build_graph(read_centerline(check_centerline), check_centerline);
       const CheckReport report = check_mesh(surface, graph ? &*graph : nullptr);
       if (json)
         std::cout << report_json(report) << "\n";

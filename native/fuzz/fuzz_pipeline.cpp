@@ -152,7 +152,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   try {
     const CenterlineData centerline = mode & 1 ? parse_swc(in.rest(), source) : decode(in, options);
     validate(centerline, source);
-    const CenterlineGraph graph = build_graph(centerline);
+    const CenterlineGraph graph = build_graph(centerline, source);
     if (skip_known && !clear_of_known_issues(graph)) return 0;
     const MeshResult result = mesh_centerline(graph, options);
     for (const Vec3& v : result.mesh.vertices)

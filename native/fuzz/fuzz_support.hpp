@@ -24,7 +24,7 @@ inline std::string_view as_text(const uint8_t* data, std::size_t size) {
 /// validate(), and where it passes, build_graph(): the steps `vesselmesh info` takes after a read.
 inline void check_centerline(const CenterlineData& data, const std::string& source) {
   validate(data, source);
-  const CenterlineGraph graph = build_graph(data);
+  const CenterlineGraph graph = build_graph(data, source);
   // The graph's own invariants (centerline_graph.hpp); a break is a bug, not bad input.
   if (graph.offsets.size() != graph.points.size() + 1 || graph.radius.size() != graph.points.size() ||
       graph.end_radius.size() != graph.edges.size() || graph.incident.size() != 2 * graph.edges.size() ||

@@ -224,7 +224,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
                               "duplicate edges dropped) with its topology.")
       .def(py::init([](const Points& points, const py::object& edges, std::optional<Values> radius,
                        std::optional<Values> edge_radius, std::optional<py::object> roots) {
-             return build_graph(data_from_arrays(points, edges, radius, edge_radius, roots));
+             return build_graph(data_from_arrays(points, edges, radius, edge_radius, roots), "arrays");
            }),
            py::arg("points"), py::arg("edges"), py::kw_only(), py::arg("radius") = py::none(),
            py::arg("edge_radius") = py::none(), py::arg("roots") = py::none(),
@@ -235,7 +235,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
             ReadOptions options;
             options.radius_array = radius_array;
             py::gil_scoped_release release;
-            return build_graph(read_centerline(path, options));
+            return build_graph(read_centerline(path, options), path);
           },
           py::arg("path"), py::arg("radius_array") = "", "Read a centerline file and build its graph.")
       .def_property_readonly("points", [](const CenterlineGraph& g) { return points_array(g.points); })

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 
 using namespace vesselmesh;
@@ -152,4 +154,20 @@ TEST(Graph, SixWayJointIsOnePointOfDegreeSix) {
   EXPECT_EQ(g.max_degree(), 6);
   EXPECT_EQ(g.branches.size(), 6u);
   EXPECT_EQ(g.terminals(), 6);
+}
+
+TEST(Graph, PointsThatMergeInAChainLeavingNoEdgeAreRefusedNamingTheSource) {
+  // Each point within a millionth of a radius of the next, the first and last twice as far apart: every
+  // edge joins two points that merge, though no single edge is that short end to end.
+  CenterlineData d;
+  d.points = {Vec3(0, 0, 0), Vec3(0.6e-6, 0, 0), Vec3(1.2e-6, 0, 0)};
+  d.radius = {1, 1, 1};
+  d.edges = {{0, 1}, {1, 2}, {0, 2}};
+  try {
+    build_graph(d, "chain.swc");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("chain.swc: every edge joins points that merge"), std::string::npos)
+        << e.what();
+  }
 }

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 
 namespace vesselmesh {
@@ -155,7 +156,7 @@ void find_branches(CenterlineGraph& g) {
 
 }  // namespace
 
-CenterlineGraph build_graph(const CenterlineData& data) {
+CenterlineGraph build_graph(const CenterlineData& data, const std::string& source) {
   CenterlineGraph g;
   NormalisationReport& report = g.report;
   report.input_points = static_cast<int64_t>(data.points.size());
@@ -195,6 +196,10 @@ CenterlineGraph build_graph(const CenterlineData& data) {
   }
   for (std::size_t i = 0; i < rep.size(); ++i)
     report.isolated_points += rep[i] == static_cast<int32_t>(i) && new_id[i] < 0;
+  if (g.edges.empty())
+    throw InputError(source, "",
+                     "every edge joins points that merge (each within a millionth of a radius of the next): "
+                     "nothing to mesh");
 
   g.radius.assign(g.points.size(), 0.0);
   for (std::size_t e = 0; e < g.edges.size(); ++e)

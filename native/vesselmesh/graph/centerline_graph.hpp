@@ -60,7 +60,8 @@ struct CenterlineGraph {
 constexpr double kCoincidentFraction = 1e-6;
 
 /// Normalises `data` (which must have passed validate()) and derives the topology. Linear in the
-/// input apart from one sort of the points.
-CenterlineGraph build_graph(const CenterlineData& data);
+/// input apart from one sort of the points. Throws InputError naming `source` when no edge is left once
+/// coincident points have merged (points each within a millionth of a radius of the next, all along).
+CenterlineGraph build_graph(const CenterlineData& data, const std::string& source = "centerline");
 
 }  // namespace vesselmesh
