@@ -24,15 +24,15 @@
 // Only InputError and SizeLimitError may leave: validate() and build_graph() refusing an input, or the
 // pipeline refusing a surface over its triangle limit, is fine; anything else
 // (another exception, a sanitizer report, a timeout, running out of memory) is a finding, and so is a
-// non-finite vertex in the output surface. With FUZZ_SKIP_KNOWN=1 set, graphs in the classes of the
-// known findings (clear_of_known_issues) are skipped after build_graph().
+// non-finite vertex in the output surface. With FUZZ_SKIP_KNOWN=1 set, the errors of the tiling defects
+// still open (a joint's surface that does not close, a non-manifold base mesh) are skipped.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
+#include <string>
 
 #include "fuzz_support.hpp"
 #include "vesselmesh/pipeline.hpp"
@@ -113,25 +113,6 @@ CenterlineData decode(Bytes& in, MeshOptions& options) {
   return data;
 }
 
-/// Whether the centerline stays clear of the sampling's known cost blow-ups (docs/fuzzing.md): in all at
-/// most 1000 times its smallest radius long (the smoothing costs grow with the square of length over
-/// radius, and denormal or zero radii make that infinite), and no edge shorter than 1e-3 of the larger
-/// radius at its ends (the smoothing kernel of a branch shorter than its radius spans 8 radius / length
-/// samples), and none of length 0 (coincident points stay apart when the merge tolerance, 1e-6 of a
-/// denormal radius, underflows to 0). FUZZ_SKIP_KNOWN=1
-/// skips the others so that a run finds what else there is.
-bool clear_of_known_issues(const CenterlineGraph& graph) {
-  double length = 0, smallest = std::numeric_limits<double>::infinity();
-  for (std::size_t e = 0; e < graph.edges.size(); ++e) {
-    const double l = (graph.points[graph.edges[e][0]] - graph.points[graph.edges[e][1]]).norm();
-    const auto [r0, r1] = graph.end_radius[e];
-    if (!(l > 0 && l >= 1e-3 * std::max(r0, r1))) return false;
-    length += l;
-    smallest = std::min({smallest, r0, r1});
-  }
-  return length <= 1000 * smallest;  // false for NaN and infinity too
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
@@ -153,7 +134,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     const CenterlineData centerline = mode & 1 ? parse_swc(in.rest(), source) : decode(in, options);
     validate(centerline, source);
     const CenterlineGraph graph = build_graph(centerline, source);
-    if (skip_known && !clear_of_known_issues(graph)) return 0;
     const MeshResult result = mesh_centerline(graph, options);
     for (const Vec3& v : result.mesh.vertices)
       if (!v.allFinite()) {
@@ -164,6 +144,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     fuzz::refused(e);
   } catch (const SizeLimitError&) {
     // A surface over the triangle limit is refused before the work: what the limit is for.
+  } catch (const std::exception& e) {
+    // The tiling defects still open (docs/fuzzing.md, findings): skipped with FUZZ_SKIP_KNOWN=1, so that a
+    // run finds what else there is.
+    const std::string what = e.what();
+    if (!skip_known || (what.find("could not close the surface around the joint") == std::string::npos &&
+                        what.find("non-manifold") == std::string::npos))
+      throw;
   }
   return 0;
 }
