@@ -40,6 +40,12 @@ constexpr int kSharedTries = 4;
 /// may tilt to clear the other squares (see tilt_square).
 constexpr double kTiltFrom = 2;
 
+/// Rounds of pushing a patch's squares out (push_squares) before those that have not cleared the others
+/// are taken as stuck. Branches that run side by side from a joint, their tubes overlapping all along
+/// (vessels duplicated a little apart), push each other's squares on in turn, a fraction of a radius a
+/// round, to their far ends: tens of thousands of rounds on a branch 5e4 radii long.
+constexpr int kPushes = 1000;
+
 /// A tube's kept sections are at most this many of its sampled sections apart (see drop_folds).
 constexpr std::size_t kFoldSkip = 64;
 
@@ -100,6 +106,8 @@ struct Patch {
   /// tubes' corners on either side of the loop's plane, so that the hull covers the loop and surrounds
   /// the hole even where no branch leaves the loop.
   std::vector<Vec3> rim;
+  std::vector<int32_t> inside;  ///< its stubs and swallowed branches
+  bool body = false;            ///< the rim has the patch's body (Tiler::add_body)
 };
 
 class Tiler {
@@ -405,7 +413,7 @@ class Tiler {
         e.square.up = shared_up_[e.branch];
       }
     }
-    for (int iteration = 0; iteration < 1000; ++iteration) {
+    for (int iteration = 0; iteration < kPushes; ++iteration) {
       orient_squares(p, attempt);
       bool moved = false;
       for (int32_t i : p.ends) {
@@ -429,6 +437,11 @@ class Tiler {
         e.square = square_at(e, e.t);
       }
       if (!moved) return;
+    }
+    // Squares that still have not cleared the others are stuck where they are, as if at the far end.
+    for (int32_t i : p.ends) {
+      End& e = ends_[i];
+      if (!e.fixed && intrusion(e, p) > 0) e.stuck = true;
     }
   }
 
@@ -520,13 +533,16 @@ class Tiler {
   /// Whether the tube of branch b, between the squares at its two joints, would fold: no chain of its
   /// sections from one square to the other gets there without one reaching across the next one's plane
   /// (fold_free_chains). A short thick branch between two patches that face it from sides a right angle
-  /// apart folded so (brava-records BH0005). Only tubes shorter than four corner radii are looked at;
-  /// longer ones have room to turn, and their bends too tight for sections are corners already.
-  bool tube_folds(int32_t b) const {
+  /// apart folded so (brava-records BH0005). Unless `thorough`, only tubes shorter than four corner radii
+  /// are looked at: longer ones mostly have room to turn, and their bends too tight for sections are
+  /// corners already. Not always: squares pushed out up to a bend of their branch (a loop from a patch
+  /// back to it, 116° turns between its legs) face across it, the tube keeps only those two squares, and
+  /// the straight prism between them runs along the patch's own faces (a non-manifold base mesh).
+  bool tube_folds(int32_t b, bool thorough) const {
     const End &head = ends_[head_[b]], &tail = ends_[tail_[b]];
     const BranchCurve& c = curves_[b];
     const double from = head.t, to = c.length() - tail.t;
-    if (to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
+    if (!thorough && to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
     const std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
     std::vector<Section> sections(arcs.size());
     for (std::size_t i = 0; i < arcs.size(); ++i) {
@@ -557,7 +573,8 @@ class Tiler {
   /// pushed out round it come to reach across it, up to kSharedTries times; failing that, its joints
   /// merge into one patch, or, when they share one already, it becomes a tunnel. A branch from a joint
   /// to a terminal too short for a tube, or without room for one after its square (room_for_tube),
-  /// becomes a stub. Repeated until nothing changes.
+  /// becomes a stub. Repeated until nothing changes; then the longer tubes are looked at for folds too
+  /// (tube_folds, thorough), once the squares stand where they will, as that costs a chain per tube.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
@@ -592,46 +609,54 @@ class Tiler {
           --mesh_.tunnels;
         }
       }
-      if (changed) continue;
-      for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
-        const int32_t b = static_cast<int32_t>(bi);
-        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
-            (head_[b] < 0 && tail_[b] < 0))
-          continue;
-        const bool both = head_[b] >= 0 && tail_[b] >= 0;
-        if (kind_[b] == Kind::shared) {
-          const Patch& hp = patches_[patch_of_end_[head_[b]]];
-          const Patch& tp = patches_[patch_of_end_[tail_[b]]];
-          if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
-        } else {
-          double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
-          bool stuck = false;
-          for (int32_t i : {head_[b], tail_[b]})
-            if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-          if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b) : room_for_tube(b))) continue;
-        }
-        changed = true;
-        if (!both) {
-          kind_[b] = Kind::stub;
-          ++mesh_.absorbed_branches;
-        } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
-          // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
-          // a forest, and the branch that would close the loop makes the hole a tunnel instead.
-          kind_[b] = Kind::tunnel;
-          ++mesh_.absorbed_branches;
-          ++mesh_.tunnels;
-        } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
-          ++shared_tries_[b];
-          kind_[b] = Kind::shared;
-          shared_up_[b] = any_perpendicular(shared_normal_[b]);
-        } else {
-          kind_[b] = Kind::swallowed;
-          joints_.unite(first_point(b), last_point(b));
-          ++mesh_.absorbed_branches;
-        }
-      }
-      if (!changed) return;
+      if (changed || decide_kinds(false) || decide_kinds(true)) continue;
+      return;
     }
+  }
+
+  /// Decides the kind of each branch from where its squares stand (find_patches); true when one
+  /// changed. `thorough`: whether tube_folds looks at every tube between two joints, not only short ones.
+  bool decide_kinds(bool thorough) {
+    bool changed = false;
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
+      const int32_t b = static_cast<int32_t>(bi);
+      if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
+          (head_[b] < 0 && tail_[b] < 0))
+        continue;
+      const bool both = head_[b] >= 0 && tail_[b] >= 0;
+      if (kind_[b] == Kind::shared) {
+        const Patch& hp = patches_[patch_of_end_[head_[b]]];
+        const Patch& tp = patches_[patch_of_end_[tail_[b]]];
+        if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
+      } else {
+        double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
+        bool stuck = false;
+        for (int32_t i : {head_[b], tail_[b]})
+          if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
+        if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b, thorough) : room_for_tube(b)))
+          continue;
+      }
+      changed = true;
+      if (!both) {
+        kind_[b] = Kind::stub;
+        ++mesh_.absorbed_branches;
+      } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
+        // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
+        // a forest, and the branch that would close the loop makes the hole a tunnel instead.
+        kind_[b] = Kind::tunnel;
+        ++mesh_.absorbed_branches;
+        ++mesh_.tunnels;
+      } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
+        ++shared_tries_[b];
+        kind_[b] = Kind::shared;
+        shared_up_[b] = any_perpendicular(shared_normal_[b]);
+      } else {
+        kind_[b] = Kind::swallowed;
+        joints_.unite(first_point(b), last_point(b));
+        ++mesh_.absorbed_branches;
+      }
+    }
+    return changed;
   }
 
   std::vector<int32_t> patch_of_end_;
@@ -726,6 +751,39 @@ class Tiler {
       }
     }
     find_tunnel_holes();
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
+      const int32_t b = static_cast<int32_t>(bi);
+      if (kind_[b] == Kind::swallowed) patches_[patch_of[joints_.find(first_point(b))]].inside.push_back(b);
+      if (kind_[b] == Kind::stub)
+        patches_[patch_of_end_[head_[b] >= 0 ? head_[b] : tail_[b]]].inside.push_back(b);
+    }
+    for (Patch& p : patches_) add_body(p);
+  }
+
+  /// A patch with fewer than two openings (tube, shared or tunnel squares) is all its component has
+  /// there: its squares alone may span no solid (one square, or stubs' squares at their terminals far
+  /// from the joint) and leave the joints and swallowed branches outside. Such a patch gets round each
+  /// joint, and each point inside its stubs and swallowed branches, six rim points at the corners' reach
+  /// (an octahedron turned by a different angle at each point, so that no four of them are coplanar by
+  /// accident), and its hull covers the branches it took in.
+  void add_body(Patch& p) {
+    const auto openings = std::count_if(p.ends.begin(), p.ends.end(), [&](int32_t i) {
+      return kind_[ends_[i].branch] != Kind::stub;
+    });
+    if (openings >= 2 || p.body) return;
+    p.body = true;
+    int turn = 0;
+    auto octahedron = [&](const Vec3& at, double r) {
+      const double angle = 2 * M_PI * std::fmod(0.6180339887 * ++turn, 1.0);
+      const Vec3 axis = Vec3(1, 2, 3).normalized();
+      for (int k = 0; k < 3; ++k)
+        for (double side : {1.0, -1.0})
+          p.rim.push_back(at + side * scale() * r * rotate(Vec3::Unit(k), axis, angle));
+    };
+    for (int32_t j : p.joints) octahedron(g_.points[j], g_.radius[j]);
+    for (int32_t b : p.inside)
+      for (std::size_t i = 1; i + 1 < curves_[b].points.size(); ++i)
+        octahedron(curves_[b].points[i], curves_[b].radius[i]);
   }
 
   /// Each tunnel's hole from its loop: the tunnel's branch and the path of swallowed branches (a tree
@@ -853,6 +911,8 @@ class Tiler {
       p.ends.erase(
           std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
           p.ends.end());
+      p.inside.push_back(b);
+      add_body(p);
     }
   }
 
