@@ -15,16 +15,14 @@
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/sample/branch_curve.hpp"
 #include "vesselmesh/tile/convex_hull.hpp"
+#include "vesselmesh/tile/corners.hpp"
+#include "vesselmesh/tile/tube_sections.hpp"
 
 namespace vesselmesh {
 
 namespace {
 
 using Quad = std::array<int32_t, 4>;
-
-/// A branch's point where it turns by more than this is tiled as a joint (see cut_at_corners).
-constexpr double kCornerJointDegrees = 120;
-const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
 
 /// Ways a tunnel is turned (each from where the patch's squares then stand) before its loop is given up.
 constexpr int kTurns = 3;
@@ -45,9 +43,6 @@ constexpr double kTiltFrom = 2;
 /// (vessels duplicated a little apart), push each other's squares on in turn, a fraction of a radius a
 /// round, to their far ends: tens of thousands of rounds on a branch 5e4 radii long.
 constexpr int kPushes = 1000;
-
-/// A tube's kept sections are at most this many of its sampled sections apart (see drop_folds).
-constexpr std::size_t kFoldSkip = 64;
 
 /// How a branch that meets a joint is built.
 enum class Kind {
@@ -113,8 +108,10 @@ struct Patch {
 class Tiler {
  public:
   Tiler(const CenterlineGraph& g, const TileOptions& o)
-      : g_(g), opt_(o), joints_(g.points.size()), corner_(g.points.size(), 0) {
-    cut_at_corners();
+      : g_(g), opt_(o), joints_(g.points.size()) {
+    CutBranches cut = cut_at_corners(g, o.sampling, o.radius_scale);
+    branches_ = std::move(cut.branches);
+    corner_ = std::move(cut.corner);
     for (const Branch& b : branches_) curves_.push_back(branch_curve(g, b));
     kind_.assign(branches_.size(), Kind::tube);
     shared_at_.assign(branches_.size(), 0.0);
@@ -164,136 +161,6 @@ class Tiler {
   bool is_joint(int32_t v) const { return g_.degree(v) >= 3 || corner_[v]; }
   int32_t first_point(int32_t b) const { return branches_[b].points.front(); }
   int32_t last_point(int32_t b) const { return branches_[b].points.back(); }
-
-  /// Cuts the branches at their sharp corners (mark_corners), which then join their two pieces like any
-  /// joint: a convex patch between two squares, pushed along each piece until they clear each other. A
-  /// tube swept round such a corner folds on its inner side (within a few radii its two legs overlap, and
-  /// the smoothed tangent, spanning the legs, leaves the sections near the corner leaning along them).
-  /// Closed rings of degree-2 points are left whole.
-  void cut_at_corners() {
-    for (const Branch& b : g_.branches) {
-      const std::size_t k = b.points.size() - 1;
-      if (b.points.front() == b.points.back() && !is_joint(b.points.front())) {
-        branches_.push_back(b);
-        continue;
-      }
-      mark_corners(b);
-      std::vector<Branch> pieces;
-      for (bool cut = true; cut;) {
-        pieces.clear();
-        std::size_t from = 0;
-        for (std::size_t i = 1; i <= k; ++i) {
-          if (i < k && !corner_[b.points[i]]) continue;
-          Branch piece;
-          piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
-          piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
-          pieces.push_back(std::move(piece));
-          from = i;
-        }
-        cut = false;
-        for (const Branch& piece : pieces) {
-          const int32_t corner = tight_bend(piece);
-          if (corner >= 0) corner_[corner] = 1, cut = true;
-        }
-      }
-      branches_.insert(branches_.end(), pieces.begin(), pieces.end());
-    }
-  }
-
-  /// For each section, the most sections a chain from the first to it keeps, no two kept in a row
-  /// crossing (one's square reaching across the other's plane) and none more than kFoldSkip apart; 0
-  /// where no chain gets. `from` receives each section's predecessor in its chain.
-  std::vector<int> fold_free_chains(const std::vector<Section>& sections,
-                                    std::vector<std::size_t>& from) const {
-    const std::size_t n = sections.size();
-    std::vector<int> count(n, 0);
-    from.assign(n, 0);
-    if (n == 0) return count;
-    count[0] = 1;
-    for (std::size_t i = 1; i < n; ++i)
-      for (std::size_t j = i; j-- > (i > kFoldSkip ? i - kFoldSkip : 0);)  // the nearest first, on ties
-        if (count[j] + 1 > count[i] && count[j] > 0 && !crosses(sections[j], sections[i]))
-          count[i] = count[j] + 1, from[i] = j;
-    return count;
-  }
-
-  /// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
-  /// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
-  /// reaching across the next one's plane, and a tube would fold there however its sections were
-  /// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
-  /// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
-  /// break off; −1 when they get through, or no point of the piece is there.
-  int32_t tight_bend(const Branch& piece) const {
-    const std::size_t k = piece.points.size() - 1;
-    if (k < 2) return -1;
-    const BranchCurve c = branch_curve(g_, piece);
-    const std::vector<double> arcs = sample_branch(c, 0, c.length(), opt_.sampling);
-    std::vector<Section> sections(arcs.size());
-    for (std::size_t i = 0; i < arcs.size(); ++i) {
-      sections[i].center = c.position(arcs[i]);
-      sections[i].radius = c.radius_at(arcs[i]);
-      sections[i].normal = c.tangent(arcs[i]);
-    }
-    std::vector<std::size_t> from;
-    const std::vector<int> count = fold_free_chains(sections, from);
-    const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
-    if (broken == count.size()) return -1;
-    const double r = sections[broken].radius;
-    const double lo = arcs[broken - 1] - 2 * scale() * r, hi = arcs[broken] + 2 * r;
-    auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
-    int32_t sharpest = -1;
-    double lowest = 1;  // cosine of the turn
-    for (std::size_t i = 1; i < k; ++i) {
-      const double s = c.arc[i];
-      if (s < lo || s > hi) continue;
-      const double reach = 2 * g_.radius[piece.points[i]];
-      const Vec3 in = (c.points[i] - at(s - reach)).normalized(),
-                 out = (at(s + reach) - c.points[i]).normalized();
-      if (in.dot(out) < lowest) lowest = in.dot(out), sharpest = piece.points[i];
-    }
-    return sharpest;
-  }
-
-  /// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
-  /// the branch turns that far within two radii either side of a point (a hairpin drawn over several
-  /// short edges: bent tighter than its radius), the sharpest such point, none within two radii of
-  /// another corner.
-  void mark_corners(const Branch& b) {
-    const std::size_t k = b.points.size() - 1;
-    auto point = [&](std::size_t i) { return g_.points[b.points[i]]; };
-    std::vector<double> arc(k + 1, 0.0);
-    for (std::size_t i = 1; i <= k; ++i) arc[i] = arc[i - 1] + (point(i) - point(i - 1)).norm();
-    auto at = [&](double s) {  // the polyline at arc length s, clamped to the branch
-      s = std::clamp(s, 0.0, arc[k]);
-      const std::size_t i =
-          std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), k) - 1;
-      const double f = arc[i + 1] > arc[i] ? (s - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
-      return Vec3((1 - f) * point(i) + f * point(i + 1));
-    };
-    auto sharp = [](const Vec3& in, const Vec3& out) {
-      return in.dot(out) < kCornerJointCosine * in.norm() * out.norm();
-    };
-    std::vector<std::pair<double, std::size_t>> bends;  // (cosine of the turn within reach, point)
-    for (std::size_t i = 1; i < k; ++i) {
-      if (sharp(point(i) - point(i - 1), point(i + 1) - point(i))) {
-        corner_[b.points[i]] = 1;
-        continue;
-      }
-      const double reach = 2 * g_.radius[b.points[i]];
-      const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
-      if (sharp(in, out)) bends.push_back({in.normalized().dot(out.normalized()), i});
-    }
-    std::sort(bends.begin(), bends.end());
-    for (const auto& [cosine, i] : bends) {
-      const double reach = 2 * g_.radius[b.points[i]];
-      bool clear = true;
-      for (std::size_t j = i; clear && j > 1 && arc[i] - arc[j - 1] <= reach; --j)
-        clear = !corner_[b.points[j - 1]];
-      for (std::size_t j = i; clear && j + 1 < k && arc[j + 1] - arc[i] <= reach; ++j)
-        clear = !corner_[b.points[j + 1]];
-      if (clear) corner_[b.points[i]] = 1;
-    }
-  }
 
   double scale() const { return opt_.radius_scale; }
 
@@ -476,7 +343,8 @@ class Tiler {
       for (int towards = 0; towards < 8; ++towards) {
         e.square.normal =
             rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
-        if (crosses(e.square, ahead[0]) || crosses(e.square, ahead[1])) continue;
+        if (sections_cross(e.square, ahead[0], scale()) || sections_cross(e.square, ahead[1], scale()))
+          continue;
         const double overlap = intrusion(e, p);
         if (overlap < best) best = overlap, best_normal = e.square.normal;
       }
@@ -554,7 +422,7 @@ class Tiler {
     sections.back() = tail.square;
     sections.back().normal = -tail.square.normal;  // along the branch, as the others
     std::vector<std::size_t> chain;
-    return fold_free_chains(sections, chain).back() == 0;
+    return fold_free_chains(sections, scale(), chain).back() == 0;
   }
 
   /// Whether a branch from a joint to a terminal has room for a tube after its joint square: its end lies
@@ -1008,100 +876,6 @@ class Tiler {
     return true;
   }
 
-  /// Whether the squares of consecutive sections a and b (normals along the travel, corners within
-  /// reach_a and reach_b of their centres) reach across each other's planes: b's behind a's, or a's
-  /// ahead of b's.
-  static bool crosses(const Section& a, double reach_a, const Section& b, double reach_b) {
-    const double sine = std::sqrt(std::max(0.0, 1 - std::pow(a.normal.dot(b.normal), 2)));
-    return a.normal.dot(b.center - a.center) < reach_b * sine || b.normal.dot(b.center - a.center) < reach_a * sine;
-  }
-  bool crosses(const Section& a, const Section& b) const {
-    return crosses(a, scale() * a.radius, b, scale() * b.radius);
-  }
-
-  /// The largest distance of a section's corners from its centre: scale() × r, pushed out by the lean
-  /// against `axis` (see add_section).
-  double corner_reach(const Section& s, const Vec3& axis) const {
-    return scale() * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
-  }
-
-  /// Moves the inner sections' centres so that the Loop limit surface passes through where they were.
-  /// Along a tube whose sections each join their neighbours by two edges per corner, the limit of a
-  /// section's corners moves with 2/3 of its own centre and 1/6 of each neighbour's: a bent centerline
-  /// would be cut short by about a sixth of the turn, like a cubic B-spline's control polygon. Solving
-  /// (c[i−1] + 4c[i] + c[i+1])/6 = p[i] (Jacobi sweeps, which halve the error each time) undoes that;
-  /// end sections (joint squares, caps) stay put, and a ring wraps round. On a jagged centerline the
-  /// solution swings from side to side: no centre moves by more than a fifth of its radius, and one
-  /// whose move would fold the tube (its square crossing a neighbour's plane) stays where it was.
-  void place_for_limit(std::vector<Section>& sections, const std::vector<Vec3>& axis, bool ring) const {
-    const std::size_t n = ring ? sections.size() - 1 : sections.size();
-    if (n < 3) return;
-    std::vector<Vec3> target(n), c(n), next(n);
-    for (std::size_t i = 0; i < n; ++i) target[i] = c[i] = sections[i].center;
-    const std::size_t first = ring ? 0 : 1, last = ring ? n : n - 1;
-    for (int sweep = 0; sweep < 40; ++sweep) {
-      next = c;
-      for (std::size_t i = first; i < last; ++i)
-        next[i] = 1.5 * target[i] - 0.25 * (c[(i + n - 1) % n] + c[(i + 1) % n]);
-      std::swap(c, next);
-    }
-    for (std::size_t i = first; i < last; ++i) {
-      const Vec3 move = c[i] - target[i];
-      const double most = 0.2 * sections[i].radius;
-      sections[i].center = target[i] + (move.norm() > most ? most / move.norm() : 1.0) * move;
-    }
-    for (std::size_t i = first; i < last; ++i) {
-      const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
-      const double here = corner_reach(sections[i], axis[i]);
-      if (crosses(sections[before], corner_reach(sections[before], axis[before]), sections[i], here) ||
-          crosses(sections[i], here, sections[after], corner_reach(sections[after], axis[after])))
-        sections[i].center = target[i];
-    }
-    if (ring) sections.back().center = sections.front().center;
-  }
-
-  /// Keeps the most sections such that no two kept in a row cross (one's square reaching across the
-  /// other's plane: the tube would fold between them, on a bend tighter than the corners' radius, or where
-  /// a joint square facing along its chord meets a turning branch). The end sections stay. Dropped one
-  /// by one against the last kept, a section kept at the bottom of a U-bend, facing down its first leg,
-  /// had the whole way back up behind its plane: every later section went, and the tube became one
-  /// straight prism from end to end, through whatever lay beside the bend (brava-records' trunks;
-  /// fixture u_bend_into_a_joint). Kept sections are at most kFoldSkip apart; where no such chain reaches
-  /// the last section, sections are dropped one by one as before.
-  void drop_folds(std::vector<Section>& sections) const {
-    const std::size_t n = sections.size();
-    if (n <= 2) return;
-    std::vector<std::size_t> from;
-    const std::vector<int> count = fold_free_chains(sections, from);
-    std::vector<Section> kept;
-    if (count[n - 1] > 0) {
-      for (std::size_t i = n - 1; i > 0; i = from[i]) kept.push_back(sections[i]);
-      kept.push_back(sections.front());
-      std::reverse(kept.begin(), kept.end());
-    } else {
-      kept.push_back(sections.front());
-      for (std::size_t i = 1; i + 1 < n; ++i)
-        if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
-      while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
-      kept.push_back(sections.back());
-    }
-    sections = std::move(kept);
-  }
-
-  /// When a branch keeps only its end sections and even these cross (it turns by more than a right angle
-  /// within a few radii), its terminal ends face along the chord between the two, or along the joint
-  /// square at its other end: a straight piece with parallel squares cannot fold.
-  void unfold_ends(std::vector<Section>& sections, bool free_front, bool free_back) const {
-    if (sections.size() != 2) return;
-    Section &a = sections.front(), &b = sections.back();
-    const Vec3 chord = b.center - a.center;
-    if (!(chord.norm() > 0) || !crosses(a, b)) return;
-    if (free_front) a.normal = chord.normalized();
-    if (free_back) b.normal = chord.normalized();
-    if (crosses(a, b) && free_front != free_back)
-      (free_front ? a.normal : b.normal) = (free_front ? b : a).normal;
-  }
-
   void build_tube(int32_t b) {
     const BranchCurve& c = curves_[b];
     const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
@@ -1123,15 +897,15 @@ class Tiler {
     if (head) sections.front().normal = head->square.normal;
     if (tail) sections.back().normal = -tail->square.normal;
     if (!ring) {
-      drop_folds(sections);
-      unfold_ends(sections, !head, !tail);
+      drop_folds(sections, scale());
+      unfold_ends(sections, !head, !tail, scale());
     }
     const std::size_t m = sections.size() - 1;
     // Where the tube really runs at each section: along the polyline through the centres.
     std::vector<Vec3> axis(m + 1);
     for (std::size_t i = 0; i <= m; ++i)
       axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
-    place_for_limit(sections, axis, ring);
+    place_for_limit(sections, axis, ring, scale());
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
