@@ -248,3 +248,21 @@ TEST(ExtremeInputs, LoopWhoseSquaresStandAtItsBendsGivesAManifoldSurface) {
   EXPECT_TRUE(m.result.verification.topology.closed_manifold());
   EXPECT_EQ(m.result.verification.problem(), "");
 }
+
+// A loop of radius 4 fills its own hole at its joint, round a thin branch from that joint: the loop's
+// tunnel cannot close and is given up, the patch takes in the loop's body, and the thin branch, inside
+// that body, is decided again (a stub to its end) rather than kept as a tube whose square no longer
+// clears the patch.
+TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
+  const std::string file = extreme("fat_loop_round_a_thin_branch.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  // The thin branch's terminal (4, 4, −3), radius 1, within a quarter radius (a flat cap's rim rounds in).
+  EXPECT_GE(hi.x(), 4 - 0.25);
+  EXPECT_GE(hi.y(), 4 - 0.25);
+  EXPECT_LE(lo.z(), -3 + 0.25);
+  // The loop's point (−3, 0, 0), radius 4.16, to 0.9 of its radius.
+  EXPECT_LE(lo.x(), -3 - 0.9 * 4.15625);
+}

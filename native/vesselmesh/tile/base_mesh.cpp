@@ -102,7 +102,6 @@ struct Patch {
   /// the hole even where no branch leaves the loop.
   std::vector<Vec3> rim;
   std::vector<int32_t> inside;  ///< its stubs and swallowed branches
-  bool body = false;            ///< the rim has the patch's body (Tiler::add_body)
 };
 
 class Tiler {
@@ -129,8 +128,18 @@ class Tiler {
     for (const BranchCurve& c : curves_) estimate += estimated_sections(c, opt_.sampling);
     if (estimate > 2.0 * static_cast<double>(opt_.max_sections))
       throw SizeLimitError("about " + std::to_string(static_cast<int64_t>(estimate)) + " sections");
-    find_patches();
-    for (const Patch& p : patches_) build_patch(p);
+    // A tunnel whose patch cannot close is given up, and the kinds decided again without it: the patch
+    // may then have too few openings for its squares to span it, take in its body, and push a square
+    // that cleared the tunnel's mouths to the far end of its branch.
+    for (bool closed = false; !closed;) {
+      find_patches();
+      mesh_.vertices.clear();
+      mesh_.axes.clear();
+      mesh_.triangles.clear();
+      mesh_.sections = mesh_.joints = 0;
+      std::fill(shared_vertex_.begin(), shared_vertex_.end(), -1);
+      closed = std::all_of(patches_.begin(), patches_.end(), [&](const Patch& p) { return build_patch(p); });
+    }
     for (std::size_t b = 0; b < branches_.size(); ++b) {
       if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
       if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
@@ -638,8 +647,7 @@ class Tiler {
     const auto openings = std::count_if(p.ends.begin(), p.ends.end(), [&](int32_t i) {
       return kind_[ends_[i].branch] != Kind::stub;
     });
-    if (openings >= 2 || p.body) return;
-    p.body = true;
+    if (openings >= 2) return;
     int turn = 0;
     auto octahedron = [&](const Vec3& at, double r) {
       const double angle = 2 * M_PI * std::fmod(0.6180339887 * ++turn, 1.0);
@@ -762,26 +770,19 @@ class Tiler {
   }
 
   /// Closes the patch. Where its hull cannot close around a tunnel, the tunnel's loop is given up (its
-  /// branch is swallowed) and the patch tried again without it.
-  void build_patch(Patch p) {
-    while (!close_patch(p)) {
-      const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
-                                       [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
-      if (tunnel == p.ends.end()) {
-        const Vec3& at = g_.points[p.joints[0]];
-        throw std::runtime_error("could not close the surface around the joint at (" +
-                                 std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
-                                 std::to_string(at.z()) + ")");
-      }
-      const int32_t b = ends_[*tunnel].branch;
-      kind_[b] = Kind::swallowed;
-      --mesh_.tunnels;
-      p.ends.erase(
-          std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
-          p.ends.end());
-      p.inside.push_back(b);
-      add_body(p);
+  /// branch is swallowed) and false returned, for the kinds to be decided again without it.
+  bool build_patch(const Patch& p) {
+    if (close_patch(p)) return true;
+    const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
+                                     [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
+    if (tunnel == p.ends.end()) {
+      const Vec3& at = g_.points[p.joints[0]];
+      throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
+                               ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
     }
+    kind_[ends_[*tunnel].branch] = Kind::swallowed;
+    --mesh_.tunnels;
+    return false;
   }
 
   /// The convex hull of the patch's squares with the tubes' and shared squares cut out. When exact
