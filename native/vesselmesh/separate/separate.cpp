@@ -22,39 +22,73 @@ constexpr double kGap = 0.2;  // separated tubes lie this fraction of the sum of
 constexpr int kRounds = 8;
 constexpr double kStep = 0.25;  // points added along a crossing edge lie this fraction of the radii apart
 
-// Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
-// `limit` (a Dijkstra search that goes no further than that).
-bool near_along_graph(const CenterlineGraph& g, int32_t e, double s, int32_t f, double t, double limit) {
-  auto length = [&](int32_t edge) {
-    return (g.points[g.edges[edge][1]] - g.points[g.edges[edge][0]]).norm();
-  };
-  if (e == f) return std::abs(s - t) * length(e) < limit;
-  std::unordered_map<int32_t, double> reached;
-  using Entry = std::pair<double, int32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  auto reach = [&](int32_t v, double d) {
-    if (d >= limit) return;
-    auto [it, fresh] = reached.emplace(v, d);
-    if (!fresh && it->second <= d) return;
-    it->second = d;
-    queue.push({d, v});
-  };
-  reach(g.edges[e][0], s * length(e));
-  reach(g.edges[e][1], (1 - s) * length(e));
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > reached[v]) continue;
-    if ((v == g.edges[f][0] && d + t * length(f) < limit) ||
-        (v == g.edges[f][1] && d + (1 - t) * length(f) < limit))
-      return true;
-    for (int32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-      const int32_t w = g.other(g.incident[k], v);
-      reach(w, d + (g.points[w] - g.points[v]).norm());
+// Centerline path lengths between edges, from searches kept per point: crossing_edges asks for every
+// pair of overlapping edges, and where the tubes of a star all overlap round its joint (and the
+// separate stage has added points every quarter radius along them), a search per pair took over a
+// second, minutes under the sanitizers (fuzz finding separate-dense-star-timeout).
+class PathLengths {
+ public:
+  explicit PathLengths(const CenterlineGraph& g) : g_(g) {}
+
+  // Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
+  // `limit`.
+  bool near(int32_t e, double s, int32_t f, double t, double limit) {
+    if (e == f) return std::abs(s - t) * length(e) < limit;
+    for (int i = 0; i < 2; ++i) {
+      const double to_end = (i == 0 ? s : 1 - s) * length(e);
+      if (to_end >= limit) continue;
+      const std::unordered_map<int32_t, double>& reached = from(g_.edges[e][i], limit - to_end);
+      for (int j = 0; j < 2; ++j) {
+        const auto it = reached.find(g_.edges[f][j]);
+        if (it != reached.end() && to_end + it->second + (j == 0 ? t : 1 - t) * length(f) < limit)
+          return true;
+      }
     }
+    return false;
   }
-  return false;
-}
+
+ private:
+  struct Search {
+    double limit = 0;                            // every point closer than this is in `reached`
+    std::unordered_map<int32_t, double> reached;  // point -> its path length from the search's start
+  };
+  const CenterlineGraph& g_;
+  std::unordered_map<int32_t, Search> searches_;
+
+  double length(int32_t edge) const {
+    return (g_.points[g_.edges[edge][1]] - g_.points[g_.edges[edge][0]]).norm();
+  }
+
+  // The path lengths from point v to the points closer than `limit` (a Dijkstra search that goes no
+  // further), searched again only when a longer limit is asked for.
+  const std::unordered_map<int32_t, double>& from(int32_t v, double limit) {
+    Search& search = searches_[v];
+    if (search.limit >= limit) return search.reached;
+    search.limit = limit;
+    std::unordered_map<int32_t, double>& reached = search.reached;
+    reached.clear();
+    using Entry = std::pair<double, int32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    auto reach = [&](int32_t w, double d) {
+      if (d >= limit) return;
+      auto [it, fresh] = reached.emplace(w, d);
+      if (!fresh && it->second <= d) return;
+      it->second = d;
+      queue.push({d, w});
+    };
+    reach(v, 0.0);
+    while (!queue.empty()) {
+      const auto [d, u] = queue.top();
+      queue.pop();
+      if (d > reached[u]) continue;
+      for (int32_t k = g_.offsets[u]; k < g_.offsets[u + 1]; ++k) {
+        const int32_t w = g_.other(g_.incident[k], u);
+        reach(w, d + (g_.points[w] - g_.points[u]).norm());
+      }
+    }
+    return search.reached;
+  }
+};
 
 // How far along branch a from its end at joint j its axis lies all the way within its own radius of a
 // tube of branch b: as far as the two tubes overlap from the joint on, as at a fork at a small angle.
@@ -180,12 +214,13 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
     if (fresh) it->second = overlap_from_joint(g, cones, a, b, j);
     return from_j <= it->second;
   };
+  PathLengths paths(g);
   std::vector<std::array<int32_t, 2>> out;
   for (const auto& [e, f] : overlapping) {
     const RoundCone& k = cones.cone(e);
     const RoundCone& l = cones.cone(f);
     const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
-    if (near_along_graph(g, e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
+    if (paths.near(e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
     bool from_joint = false;
     const Branch& a = g.branches[k.branch];
     const Branch& b = g.branches[l.branch];
