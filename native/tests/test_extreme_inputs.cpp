@@ -266,3 +266,16 @@ TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
   // The loop's point (−3, 0, 0), radius 4.16, to 0.9 of its radius.
   EXPECT_LE(lo.x(), -3 - 0.9 * 4.15625);
 }
+
+// A hairpin 4000 radii long whose legs overlap for their first 280 radii from the corner: the corner's
+// two squares, pushed on side by side, stood abreast, each just clear of the other's plane, and the
+// corner's hull could not close round them. The leg whose square was pushed furthest is given up there
+// (a stub), and the surface closes, the corner in it.
+TEST(ExtremeInputs, HairpinWhoseLegsRunOnSideBySideClosesRoundItsCorner) {
+  const std::string file = extreme("hairpin_legs_side_by_side.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  EXPECT_GE(hi.y(), 1000 - 0.25 * 0.25);  // the corner (−6, 1000, 1.25), radius 0.25
+}

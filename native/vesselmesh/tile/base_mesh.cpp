@@ -128,9 +128,9 @@ class Tiler {
     for (const BranchCurve& c : curves_) estimate += estimated_sections(c, opt_.sampling);
     if (estimate > 2.0 * static_cast<double>(opt_.max_sections))
       throw SizeLimitError("about " + std::to_string(static_cast<int64_t>(estimate)) + " sections");
-    // A tunnel whose patch cannot close is given up, and the kinds decided again without it: the patch
-    // may then have too few openings for its squares to span it, take in its body, and push a square
-    // that cleared the tunnel's mouths to the far end of its branch.
+    // A tunnel or tube whose patch cannot close is given up (build_patch), and the kinds decided again
+    // without it: the patch may then have too few openings for its squares to span it, take in its
+    // body, and push a square that cleared the given-up mouths to the far end of its branch.
     for (bool closed = false; !closed;) {
       find_patches();
       mesh_.vertices.clear();
@@ -514,26 +514,32 @@ class Tiler {
           continue;
       }
       changed = true;
-      if (!both) {
-        kind_[b] = Kind::stub;
-        ++mesh_.absorbed_branches;
-      } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
-        // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
-        // a forest, and the branch that would close the loop makes the hole a tunnel instead.
-        kind_[b] = Kind::tunnel;
-        ++mesh_.absorbed_branches;
-        ++mesh_.tunnels;
-      } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
-        ++shared_tries_[b];
-        kind_[b] = Kind::shared;
-        shared_up_[b] = any_perpendicular(shared_normal_[b]);
-      } else {
-        kind_[b] = Kind::swallowed;
-        joints_.unite(first_point(b), last_point(b));
-        ++mesh_.absorbed_branches;
-      }
+      give_up_tube(b);
     }
     return changed;
+  }
+
+  /// Branch b is no tube (or shared square) at its joints: a stub when it ends at a terminal, else a
+  /// shared square, a tunnel, or swallowed by its joints' merged patch.
+  void give_up_tube(int32_t b) {
+    if (head_[b] < 0 || tail_[b] < 0) {
+      kind_[b] = Kind::stub;
+      ++mesh_.absorbed_branches;
+    } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
+      // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
+      // a forest, and the branch that would close the loop makes the hole a tunnel instead.
+      kind_[b] = Kind::tunnel;
+      ++mesh_.absorbed_branches;
+      ++mesh_.tunnels;
+    } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
+      ++shared_tries_[b];
+      kind_[b] = Kind::shared;
+      shared_up_[b] = any_perpendicular(shared_normal_[b]);
+    } else {
+      kind_[b] = Kind::swallowed;
+      joints_.unite(first_point(b), last_point(b));
+      ++mesh_.absorbed_branches;
+    }
   }
 
   std::vector<int32_t> patch_of_end_;
@@ -769,19 +775,30 @@ class Tiler {
     return {first, first + 3, first + 2, first + 1};
   }
 
-  /// Closes the patch. Where its hull cannot close around a tunnel, the tunnel's loop is given up (its
-  /// branch is swallowed) and false returned, for the kinds to be decided again without it.
+  /// Closes the patch. Where its hull cannot close, a tunnel's loop is given up (its branch is
+  /// swallowed), or failing one, the tube whose square was pushed furthest in its radii (the two legs of
+  /// a hairpin that run on side by side, their squares abreast, each just clear of the other's plane);
+  /// then false is returned, for the kinds to be decided again without it.
   bool build_patch(const Patch& p) {
     if (close_patch(p)) return true;
     const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
                                      [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
-    if (tunnel == p.ends.end()) {
+    if (tunnel != p.ends.end()) {
+      kind_[ends_[*tunnel].branch] = Kind::swallowed;
+      --mesh_.tunnels;
+      return false;
+    }
+    int32_t furthest = -1;
+    double most = -1;
+    for (int32_t i : p.ends)
+      if (kind_[ends_[i].branch] == Kind::tube && ends_[i].t / ends_[i].square.radius > most)
+        most = ends_[i].t / ends_[i].square.radius, furthest = ends_[i].branch;
+    if (furthest < 0) {
       const Vec3& at = g_.points[p.joints[0]];
       throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
                                ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
     }
-    kind_[ends_[*tunnel].branch] = Kind::swallowed;
-    --mesh_.tunnels;
+    give_up_tube(furthest);
     return false;
   }
 
