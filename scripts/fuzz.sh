@@ -5,8 +5,7 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s; targets swc vtk vtp csv pipeline)
 # Environment: FUZZ_TIMEOUT (s per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_EXTRA (folders
 # of extra seed files, space-separated: e.g. ../shared/data/brava-records, used in place, never copied
-# into the repository), FUZZ_ARGS (more libFuzzer flags); others reach the targets (FUZZ_SKIP_KNOWN=1:
-# fuzz_pipeline skips the classes of its known findings; FUZZ_VERBOSE=1).
+# into the repository), FUZZ_ARGS (more libFuzzer flags); others reach the targets (FUZZ_VERBOSE=1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)

@@ -47,8 +47,9 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
             << "  bbox        " << j["bbox"]["min"].dump() << " .. " << j["bbox"]["max"].dump() << "\n"
             << "  normalised  " << n["input_points"] << " points, " << n["input_edges"] << " edges read; merged "
             << n["merged_points"] << " coincident points, dropped " << n["zero_length_edges"]
-            << " zero-length and " << n["duplicate_edges"] << " duplicate edges and " << n["isolated_points"]
-            << " isolated points\n";
+            << " zero-length edges, merged " << n["duplicate_edges"] << " duplicate edges, dropped "
+            << n["isolated_points"] << " isolated points, set " << n["snapped_coordinates"]
+            << " coordinates next to zero to zero\n";
   // Where the input's tubes overlap, the surface cannot follow both without crossing itself, pressing
   // them flat against each other or moving them apart: worth knowing before meshing.
   const auto& overlaps = j["overlaps"];

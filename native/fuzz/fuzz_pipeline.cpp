@@ -23,9 +23,9 @@
 //
 // Only InputError and SizeLimitError may leave: validate() and build_graph() refusing an input, or the
 // pipeline refusing a surface over its triangle limit, is fine; anything else
-// (another exception, a sanitizer report, a timeout, running out of memory) is a finding, and so is a
-// non-finite vertex in the output surface. With FUZZ_SKIP_KNOWN=1 set, the errors of the tiling defects
-// still open (a joint's surface that does not close, a non-manifold base mesh) are skipped.
+// (another exception, a sanitizer report, a timeout, running out of memory) is a finding, and so are a
+// non-finite vertex in the output surface and, with flat caps, a surface that is not a closed manifold
+// with one piece per component (the pipeline's own check).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -116,7 +116,6 @@ CenterlineData decode(Bytes& in, MeshOptions& options) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
-  static const bool skip_known = std::getenv("FUZZ_SKIP_KNOWN") != nullptr;
   Bytes in(data, size);
   const uint8_t mode = in.next();
   MeshOptions options;
@@ -143,17 +142,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
         std::fprintf(stderr, "==fuzz_pipeline: a non-finite vertex in the output surface\n");
         std::abort();
       }
+    // Open caps leave each terminal's square open, and crossings the separate stage left are reported,
+    // not faults; with flat caps the surface must close, one piece per component.
+    const Verification& v = result.verification;
+    if (options.caps == Caps::flat &&
+        (!v.topology.closed_manifold() || v.topology.components != v.expected_components)) {
+      std::fprintf(stderr, "==fuzz_pipeline: the surface fails its check: %s\n", v.problem().c_str());
+      std::abort();
+    }
   } catch (const InputError& e) {
     fuzz::refused(e);
   } catch (const SizeLimitError&) {
     // A surface over the triangle limit is refused before the work: what the limit is for.
-  } catch (const std::exception& e) {
-    // The tiling defects still open (docs/fuzzing.md, findings): skipped with FUZZ_SKIP_KNOWN=1, so that a
-    // run finds what else there is.
-    const std::string what = e.what();
-    if (!skip_known || (what.find("could not close the surface around the joint") == std::string::npos &&
-                        what.find("non-manifold") == std::string::npos))
-      throw;
   }
   return 0;
 }

@@ -220,8 +220,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "A deterministic synthetic arterial network (millimetres), as a dict like read().");
 
   py::class_<CenterlineGraph>(m, "Graph",
-                              "The normalised centerline graph (coincident points merged, zero-length and\n"
-                              "duplicate edges dropped) with its topology.")
+                              "The normalised centerline graph (coincident points merged, zero-length edges\n"
+                              "dropped, duplicate edges merged) with its topology.")
       .def(py::init([](const Points& points, const py::object& edges, std::optional<Values> radius,
                        std::optional<Values> edge_radius, std::optional<py::object> roots) {
              return build_graph(data_from_arrays(points, edges, radius, edge_radius, roots), "arrays");

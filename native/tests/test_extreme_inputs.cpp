@@ -3,8 +3,10 @@
 // never a crash, a hang (ctest's timeout), or a broken surface reported as a success.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_run.hpp"
@@ -13,6 +15,7 @@
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/pipeline.hpp"
+#include "vesselmesh/read/read.hpp"
 
 namespace {
 
@@ -42,6 +45,26 @@ void expect_error(const CliRun& run, const std::string& file, const std::vector<
   EXPECT_EQ(run.status, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "error: " + file)) << run.output;
   for (const std::string& part : parts) EXPECT_TRUE(contains(run.output, part)) << part << " in " << run.output;
+}
+
+/// The fixture meshed in process with the default options: its graph and surface.
+struct Meshed {
+  vesselmesh::CenterlineGraph graph;
+  vesselmesh::MeshResult result;
+};
+Meshed mesh_in_process(const std::string& file) {
+  const vesselmesh::CenterlineData data = vesselmesh::read_centerline(file);
+  vesselmesh::validate(data, file);
+  Meshed m{vesselmesh::build_graph(data, file), {}};
+  m.result = vesselmesh::mesh_centerline(m.graph, vesselmesh::MeshOptions{});
+  return m;
+}
+
+/// Lowest and highest corner of the surface's bounding box.
+std::pair<vesselmesh::Vec3, vesselmesh::Vec3> bounds(const vesselmesh::TriMesh& mesh) {
+  vesselmesh::Vec3 lo = mesh.vertices.at(0), hi = lo;
+  for (const vesselmesh::Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  return {lo, hi};
 }
 
 }  // namespace
@@ -165,4 +188,94 @@ TEST(ExtremeInputs, PipelineChecksItsOwnSurface) {
   broken.pairs_in_overlapping_tubes = 1;
   EXPECT_TRUE(contains(broken.problem(), "not a closed manifold (3 boundary edges")) << broken.problem();
   EXPECT_TRUE(contains(broken.problem(), "crosses itself at 4 triangle pairs")) << broken.problem();
+}
+
+// Three vessels leave one joint a fifth of a radius apart and overlap all the way (a vessel traced three
+// times, a little apart): their squares push each other on for the whole 1e4 radii without clearing,
+// and the joint's patch takes them in as stubs to their ends.
+TEST(ExtremeInputs, BranchesOverlappingAllAlongFromOneJointCloseIntoOneSurfaceToTheirEnds) {
+  const std::string file = extreme("side_by_side_1e4_radii.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  // Within a quarter radius of the terminals: subdivision rounds a flat cap's rim in.
+  const double r = m.graph.radius[0];
+  EXPECT_LE(lo.x(), -10 + 0.25 * r);     // the trunk's terminal
+  EXPECT_GE(hi.x(), 10000 - 0.25 * r);  // the three vessels' terminals
+}
+
+// A joint of radius 3.4 takes in its whole loop of thin branches and its one short branch: its patch,
+// with no tube leaving it, is the hull of the joint and the branches it swallowed, not of the one
+// square at the short branch's end.
+TEST(ExtremeInputs, JointThatSwallowsAllItsBranchesIsCoveredToItsRadius) {
+  const std::string file = extreme("joint_wider_than_its_loop.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  const vesselmesh::Vec3 joint(-6, -4, -6);
+  const int32_t j = static_cast<int32_t>(
+      std::find(m.graph.points.begin(), m.graph.points.end(), joint) - m.graph.points.begin());
+  ASSERT_LT(j, static_cast<int32_t>(m.graph.points.size()));
+  const double r = m.graph.radius[j];
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_LE(lo[axis], joint[axis] - 0.9 * r) << axis;
+    EXPECT_GE(hi[axis], joint[axis] + 0.9 * r) << axis;
+  }
+}
+
+// A denormal coordinate (1e-320) underflowed the exact predicates of the joint's hull; read as the zero
+// it is within a millionth of a radius, it gives the surface that zero gives.
+TEST(ExtremeInputs, DenormalCoordinateMeshesAsZero) {
+  const std::string file = extreme("coordinate_denormal.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed denormal = mesh_in_process(file);
+  const Meshed zero = mesh_in_process(extreme("joint_wider_than_its_loop.vtk"));
+  EXPECT_EQ(denormal.graph.report.snapped_coordinates, 1);
+  EXPECT_EQ(denormal.result.verification.problem(), "");
+  EXPECT_EQ(denormal.result.mesh.vertices, zero.result.mesh.vertices);
+  EXPECT_EQ(denormal.result.mesh.faces, zero.result.mesh.faces);
+}
+
+// A loop from a cluster of joints back to it, whose squares were pushed out up to its 116° bends: no
+// chain of sections gets from one square round the bends to the other, and the straight tube between
+// the two ran along the patch's own faces. The loop closes through the patch instead.
+TEST(ExtremeInputs, LoopWhoseSquaresStandAtItsBendsGivesAManifoldSurface) {
+  const std::string file = extreme("loop_squares_at_its_bends.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_TRUE(m.result.verification.topology.closed_manifold());
+  EXPECT_EQ(m.result.verification.problem(), "");
+}
+
+// A loop of radius 4 fills its own hole at its joint, round a thin branch from that joint: the loop's
+// tunnel cannot close and is given up, the patch takes in the loop's body, and the thin branch, inside
+// that body, is decided again (a stub to its end) rather than kept as a tube whose square no longer
+// clears the patch.
+TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
+  const std::string file = extreme("fat_loop_round_a_thin_branch.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  // The thin branch's terminal (4, 4, −3), radius 1, within a quarter radius (a flat cap's rim rounds in).
+  EXPECT_GE(hi.x(), 4 - 0.25);
+  EXPECT_GE(hi.y(), 4 - 0.25);
+  EXPECT_LE(lo.z(), -3 + 0.25);
+  // The loop's point (−3, 0, 0), radius 4.16, to 0.9 of its radius.
+  EXPECT_LE(lo.x(), -3 - 0.9 * 4.15625);
+}
+
+// A hairpin 4000 radii long whose legs overlap for their first 280 radii from the corner: the corner's
+// two squares, pushed on side by side, stood abreast, each just clear of the other's plane, and the
+// corner's hull could not close round them. The leg whose square was pushed furthest is given up there
+// (a stub), and the surface closes, the corner in it.
+TEST(ExtremeInputs, HairpinWhoseLegsRunOnSideBySideClosesRoundItsCorner) {
+  const std::string file = extreme("hairpin_legs_side_by_side.vtk");
+  expect_accepted_surface(mesh(file), file);
+  const Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "");
+  const auto [lo, hi] = bounds(m.result.mesh);
+  EXPECT_GE(hi.y(), 1000 - 0.25 * 0.25);  // the corner (−6, 1000, 1.25), radius 0.25
 }

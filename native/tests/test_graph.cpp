@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "vesselmesh/error.hpp"
@@ -111,6 +112,43 @@ TEST(Graph, MergeToleranceIsRelativeToTheRadius) {
     const CenterlineGraph g = build_graph(d);
     EXPECT_EQ(g.report.merged_points, 1) << "scale " << scale;
     EXPECT_EQ(g.points.size(), 3u) << "scale " << scale;
+  }
+}
+
+TEST(Graph, DuplicatedVesselsMergeKeepingTheLargerRadiusAtEachEnd) {
+  // A vessel traced twice from one joint (0) to coincident end points (2, 3), the second trace wider at
+  // the end and drawn the other way, per point and per edge: one edge, as wide as the wider trace.
+  //   1 --- 0 --- 2 == 3
+  CenterlineData d;
+  d.points = {{0, 0, 0}, {-10, 0, 0}, {10, 0, 0}, {10, 0, 0}};
+  d.radius = {1.0, 1.0, 0.5, 0.8};
+  d.edges = {{1, 0}, {0, 2}, {3, 0}};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.merged_points, 1);
+  EXPECT_EQ(g.report.duplicate_edges, 1);
+  ASSERT_EQ(g.edges.size(), 2u);
+  const std::array<double, 2> kept = g.end_radius[1];  // the edge 0-2, its ends in that order
+  EXPECT_EQ(g.points[g.edges[1][1]], Vec3(10, 0, 0));
+  EXPECT_DOUBLE_EQ(kept[0], 1.0);
+  EXPECT_DOUBLE_EQ(kept[1], 0.8);
+  EXPECT_DOUBLE_EQ(g.radius[g.edges[1][1]], 0.8);
+
+  d.radius.clear();
+  d.edge_radius = {1.0, 0.5, 0.8};
+  const CenterlineGraph e = build_graph(d);
+  EXPECT_EQ(e.report.duplicate_edges, 1);
+  EXPECT_DOUBLE_EQ(e.end_radius[1][0], 0.8);
+  EXPECT_DOUBLE_EQ(e.end_radius[1][1], 0.8);
+}
+
+TEST(Graph, CoordinatesWithinAMillionthOfTheRadiusOfZeroAreZero) {
+  // At any scale: 1e-7 r and a denormal are zero, 1e-5 r is kept.
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    CenterlineData d = polyline({{1e-7 * scale, 4.9e-324, 0}, {scale, 1e-5 * scale, 0}}, scale);
+    const CenterlineGraph g = build_graph(d);
+    EXPECT_EQ(g.report.snapped_coordinates, 2) << "scale " << scale;
+    EXPECT_EQ(g.points[0], Vec3(0, 0, 0)) << "scale " << scale;
+    EXPECT_EQ(g.points[1], Vec3(scale, 1e-5 * scale, 0)) << "scale " << scale;
   }
 }
 

@@ -29,7 +29,8 @@ std::string summary_json(const CenterlineGraph& g, int indent) {
   j["bbox"] = {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}};
   j["normalisation"] = {{"input_points", r.input_points},       {"input_edges", r.input_edges},
                         {"merged_points", r.merged_points},     {"zero_length_edges", r.zero_length_edges},
-                        {"duplicate_edges", r.duplicate_edges}, {"isolated_points", r.isolated_points}};
+                        {"duplicate_edges", r.duplicate_edges}, {"isolated_points", r.isolated_points},
+                        {"snapped_coordinates", r.snapped_coordinates}};
   nlohmann::ordered_json overlaps = nlohmann::ordered_json::array();
   const RoundCones cones(g);
   for (const TubeOverlap& o : tube_overlaps(g, cones, crossing_edges(g, cones)))

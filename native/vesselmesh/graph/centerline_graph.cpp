@@ -5,7 +5,6 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/union_find.hpp"
@@ -167,32 +166,47 @@ CenterlineGraph build_graph(const CenterlineData& data, const std::string& sourc
   const std::vector<int32_t> rep = merge_coincident(data, r);
   for (std::size_t i = 0; i < rep.size(); ++i) report.merged_points += rep[i] != static_cast<int32_t>(i);
 
-  // Keep the first of parallel edges and drop self-loops; new point ids follow first use by an edge.
+  // Drop self-loops and merge parallel edges into the first, which keeps the larger radius at each end
+  // (a vessel traced twice is as wide as the wider trace); new point ids follow first use by an edge.
+  // A coordinate within the merge tolerance of zero is zero: the point moves by less than a millionth
+  // of its radius, and a denormal or a number near one (1e-320) would underflow the products of the
+  // exact geometric predicates (geometry/predicates.hpp) and spoil the hulls of the joints.
   std::vector<int32_t> new_id(data.points.size(), -1);
   auto id_of = [&](int32_t original) {
     int32_t& id = new_id[rep[original]];
     if (id < 0) {
       id = static_cast<int32_t>(g.points.size());
-      g.points.push_back(data.points[rep[original]]);
+      Vec3 p = data.points[rep[original]];
+      for (int k = 0; k < 3; ++k)
+        if (p[k] != 0 && std::abs(p[k]) <= kCoincidentFraction * r[rep[original]])
+          p[k] = 0, ++report.snapped_coordinates;
+      g.points.push_back(p);
     }
     return id;
   };
-  std::unordered_set<uint64_t> seen;
-  seen.reserve(data.edges.size() * 2);
+  std::unordered_map<uint64_t, std::size_t> kept;  // (lower, higher representative) -> edge in g.edges
+  kept.reserve(data.edges.size() * 2);
   for (std::size_t e = 0; e < data.edges.size(); ++e) {
     const auto [a, b] = data.edges[e];
     if (rep[a] == rep[b]) {
       ++report.zero_length_edges;
       continue;
     }
+    const std::array<double, 2> ends = g.radius_per_edge
+                                           ? std::array<double, 2>{data.edge_radius[e], data.edge_radius[e]}
+                                           : std::array<double, 2>{data.radius[a], data.radius[b]};
     const uint64_t lo = std::min(rep[a], rep[b]), hi = std::max(rep[a], rep[b]);
-    if (!seen.insert(lo << 32 | hi).second) {
+    const auto [it, first] = kept.emplace(lo << 32 | hi, g.edges.size());
+    if (!first) {
       ++report.duplicate_edges;
+      std::array<double, 2>& r_kept = g.end_radius[it->second];
+      const bool same_way = g.edges[it->second][0] == new_id[rep[a]];
+      r_kept[0] = std::max(r_kept[0], ends[same_way ? 0 : 1]);
+      r_kept[1] = std::max(r_kept[1], ends[same_way ? 1 : 0]);
       continue;
     }
     g.edges.push_back({id_of(a), id_of(b)});
-    g.end_radius.push_back(g.radius_per_edge ? std::array<double, 2>{data.edge_radius[e], data.edge_radius[e]}
-                                             : std::array<double, 2>{data.radius[a], data.radius[b]});
+    g.end_radius.push_back(ends);
   }
   for (std::size_t i = 0; i < rep.size(); ++i)
     report.isolated_points += rep[i] == static_cast<int32_t>(i) && new_id[i] < 0;

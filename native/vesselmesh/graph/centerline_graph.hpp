@@ -1,6 +1,7 @@
 #pragma once
 // The centerline graph: the readers' CenterlineData normalised (coincident points merged, zero-length
-// and parallel duplicate edges dropped, points on no edge dropped) with its derived topology
+// edges dropped, parallel duplicate edges merged, points on no edge dropped, coordinates next to zero
+// set to zero) with its derived topology
 // (degrees, components, branches, joints, terminals, roots, loops). Every later stage works on this.
 
 #include <array>
@@ -18,8 +19,9 @@ struct NormalisationReport {
   int64_t input_edges = 0;
   int64_t merged_points = 0;      ///< points merged into a coincident point
   int64_t zero_length_edges = 0;  ///< edges dropped because their two ends coincide
-  int64_t duplicate_edges = 0;    ///< edges dropped because another edge joins the same two points
+  int64_t duplicate_edges = 0;    ///< edges merged into another that joins the same two points
   int64_t isolated_points = 0;    ///< points on no edge, dropped
+  int64_t snapped_coordinates = 0;  ///< coordinates within a millionth of their point's radius of 0, set to 0
 };
 
 /// A chain of edges between two points of degree other than 2 (or a closed ring of degree-2 points).

@@ -22,69 +22,131 @@ constexpr double kGap = 0.2;  // separated tubes lie this fraction of the sum of
 constexpr int kRounds = 8;
 constexpr double kStep = 0.25;  // points added along a crossing edge lie this fraction of the radii apart
 
-// Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
-// `limit` (a Dijkstra search that goes no further than that).
-bool near_along_graph(const CenterlineGraph& g, int32_t e, double s, int32_t f, double t, double limit) {
-  auto length = [&](int32_t edge) {
-    return (g.points[g.edges[edge][1]] - g.points[g.edges[edge][0]]).norm();
-  };
-  if (e == f) return std::abs(s - t) * length(e) < limit;
-  std::unordered_map<int32_t, double> reached;
-  using Entry = std::pair<double, int32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  auto reach = [&](int32_t v, double d) {
-    if (d >= limit) return;
-    auto [it, fresh] = reached.emplace(v, d);
-    if (!fresh && it->second <= d) return;
-    it->second = d;
-    queue.push({d, v});
-  };
-  reach(g.edges[e][0], s * length(e));
-  reach(g.edges[e][1], (1 - s) * length(e));
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > reached[v]) continue;
-    if ((v == g.edges[f][0] && d + t * length(f) < limit) ||
-        (v == g.edges[f][1] && d + (1 - t) * length(f) < limit))
-      return true;
-    for (int32_t k = g.offsets[v]; k < g.offsets[v + 1]; ++k) {
-      const int32_t w = g.other(g.incident[k], v);
-      reach(w, d + (g.points[w] - g.points[v]).norm());
+// Centerline path lengths between edges, from searches kept per point: crossing_edges asks for every
+// pair of overlapping edges, and where the tubes of a star all overlap round its joint (and the
+// separate stage has added points every quarter radius along them), a search per pair took over a
+// second, minutes under the sanitizers (fuzz finding separate-dense-star-timeout).
+class PathLengths {
+ public:
+  explicit PathLengths(const CenterlineGraph& g) : g_(g) {}
+
+  // Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
+  // `limit`.
+  bool near(int32_t e, double s, int32_t f, double t, double limit) {
+    if (e == f) return std::abs(s - t) * length(e) < limit;
+    for (int i = 0; i < 2; ++i) {
+      const double to_end = (i == 0 ? s : 1 - s) * length(e);
+      if (to_end >= limit) continue;
+      const std::unordered_map<int32_t, double>& reached = from(g_.edges[e][i], limit - to_end);
+      for (int j = 0; j < 2; ++j) {
+        const auto it = reached.find(g_.edges[f][j]);
+        if (it != reached.end() && to_end + it->second + (j == 0 ? t : 1 - t) * length(f) < limit)
+          return true;
+      }
     }
+    return false;
   }
-  return false;
-}
+
+ private:
+  struct Search {
+    double limit = 0;                            // every point closer than this is in `reached`
+    std::unordered_map<int32_t, double> reached;  // point -> its path length from the search's start
+  };
+  const CenterlineGraph& g_;
+  std::unordered_map<int32_t, Search> searches_;
+
+  double length(int32_t edge) const {
+    return (g_.points[g_.edges[edge][1]] - g_.points[g_.edges[edge][0]]).norm();
+  }
+
+  // The path lengths from point v to the points closer than `limit` (a Dijkstra search that goes no
+  // further), searched again only when a longer limit is asked for.
+  const std::unordered_map<int32_t, double>& from(int32_t v, double limit) {
+    Search& search = searches_[v];
+    if (search.limit >= limit) return search.reached;
+    search.limit = limit;
+    std::unordered_map<int32_t, double>& reached = search.reached;
+    reached.clear();
+    using Entry = std::pair<double, int32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    auto reach = [&](int32_t w, double d) {
+      if (d >= limit) return;
+      auto [it, fresh] = reached.emplace(w, d);
+      if (!fresh && it->second <= d) return;
+      it->second = d;
+      queue.push({d, w});
+    };
+    reach(v, 0.0);
+    while (!queue.empty()) {
+      const auto [d, u] = queue.top();
+      queue.pop();
+      if (d > reached[u]) continue;
+      for (int32_t k = g_.offsets[u]; k < g_.offsets[u + 1]; ++k) {
+        const int32_t w = g_.other(g_.incident[k], u);
+        reach(w, d + (g_.points[w] - g_.points[u]).norm());
+      }
+    }
+    return search.reached;
+  }
+};
 
 // How far along branch a from its end at joint j its axis lies all the way within its own radius of a
 // tube of branch b: as far as the two tubes overlap from the joint on, as at a fork at a small angle.
 // Samples every half radius, at most kMaxSamples per edge (an edge thousands of radii long runs
 // beside another vessel's tube only by accident of the tracing), and stops at the first that lies out of
-// b's tube.
-double overlap_from_joint(const CenterlineGraph& g, const RoundCones& cones, int32_t a, int32_t b,
-                          int32_t j) {
-  const Branch& branch = g.branches[a];
-  const bool from_front = branch.points.front() == j;
-  const int32_t n = static_cast<int32_t>(branch.edges.size());
-  double arc = 0;
-  for (int32_t step = 0; step < n; ++step) {
-    const int32_t edge = branch.edges[from_front ? step : n - 1 - step];
-    const RoundCone& k = cones.cone(edge);
-    const bool c0_first = g.edges[edge][0] == branch.points[from_front ? step : n - step];
+// b's tube. The samples along a from j, with the branches whose tubes hold each, are the same whichever
+// branch b is asked about: they are taken once, as far as a question needs them (a star of n branches
+// asks n − 1 questions of each).
+class JointOverlaps {
+ public:
+  JointOverlaps(const CenterlineGraph& g, const RoundCones& cones) : g_(g), cones_(cones) {}
+
+  double extent(int32_t a, int32_t b, int32_t j) {
+    Walk& walk = walks_[{a, j}];
+    for (std::size_t i = 0;; ++i) {
+      if (i == walk.samples.size() && !advance(walk, a, j)) return walk.arc;
+      const Sample& sample = walk.samples[i];
+      if (std::find(sample.near.begin(), sample.near.end(), b) == sample.near.end()) return sample.at;
+    }
+  }
+
+ private:
+  struct Sample {
+    double at = 0;              // arc length from the joint
+    std::vector<int32_t> near;  // the branches whose tubes hold it
+  };
+  struct Walk {
+    int32_t step = 0;  // the edge, counted from the joint, of the next sample
+    int q = 0;         // the next sample's index on that edge
+    double arc = 0;    // arc length from the joint to that edge
+    std::vector<Sample> samples;
+  };
+  const CenterlineGraph& g_;
+  const RoundCones& cones_;
+  std::map<std::array<int32_t, 2>, Walk> walks_;  // (branch, joint) -> its samples so far
+
+  // Takes the walk's next sample; false when it has reached the far end of the branch.
+  bool advance(Walk& walk, int32_t a, int32_t j) {
+    const Branch& branch = g_.branches[a];
+    const bool from_front = branch.points.front() == j;
+    const int32_t n = static_cast<int32_t>(branch.edges.size());
+    if (walk.step >= n) return false;
+    const int32_t edge = branch.edges[from_front ? walk.step : n - 1 - walk.step];
+    const RoundCone& k = cones_.cone(edge);
+    const bool c0_first = g_.edges[edge][0] == branch.points[from_front ? walk.step : n - walk.step];
     const double length = (k.c1 - k.c0).norm();
     constexpr double kMaxSamples = 256;
     const int samples =
         1 + static_cast<int>(std::min(std::ceil(length / (0.5 * std::min(k.r0, k.r1))), kMaxSamples));
-    for (int q = 0; q <= samples; ++q) {
-      const double u = static_cast<double>(q) / samples, param = c0_first ? u : 1 - u;
-      const std::vector<ConeDistance> near = cones.within(k.point_at(param), k.radius_at(param));
-      if (std::none_of(near.begin(), near.end(), [&](const ConeDistance& d) { return d.branch == b; }))
-        return arc + u * length;
-    }
-    arc += length;
+    const double u = static_cast<double>(walk.q) / samples, param = c0_first ? u : 1 - u;
+    Sample sample{walk.arc + u * length, {}};
+    for (const ConeDistance& d : cones_.within(k.point_at(param), k.radius_at(param)))
+      sample.near.push_back(d.branch);
+    walk.samples.push_back(std::move(sample));
+    if (++walk.q > samples) walk.q = 0, ++walk.step, walk.arc += length;
+    return true;
   }
-  return arc;
-}
+};
 
 // `g` with points added along the edges of `crossing` pairs, kStep times the two radii apart within
 // twice kJointReach times the radii of where they cross, so that the moves bend the vessels there rather
@@ -170,22 +232,24 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
                                                    double gap) {
   const std::vector<std::array<int32_t, 2>> overlapping = cones.overlapping_edges(gap);
   if (overlapping.empty()) return {};
-  std::map<std::array<int32_t, 3>, double> extent;  // overlap_from_joint of (a, b, j), once each
+  JointOverlaps joint_overlaps(g, cones);
+  std::map<std::array<int32_t, 3>, double> extent;  // joint_overlaps.extent(a, b, j), once each
   // Whether parameter s of edge e lies within the overlap of its branch with branch b from joint j.
   auto overlaps_from_joint = [&](int32_t e, double s, int32_t b, int32_t j) {
     const int32_t a = cones.cone(e).branch;
     const double at = cones.arc_at(e, s);
     const double from_j = g.branches[a].points.front() == j ? at : cones.branch_length(a) - at;
     auto [it, fresh] = extent.emplace(std::array<int32_t, 3>{a, b, j}, 0.0);
-    if (fresh) it->second = overlap_from_joint(g, cones, a, b, j);
+    if (fresh) it->second = joint_overlaps.extent(a, b, j);
     return from_j <= it->second;
   };
+  PathLengths paths(g);
   std::vector<std::array<int32_t, 2>> out;
   for (const auto& [e, f] : overlapping) {
     const RoundCone& k = cones.cone(e);
     const RoundCone& l = cones.cone(f);
     const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
-    if (near_along_graph(g, e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
+    if (paths.near(e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
     bool from_joint = false;
     const Branch& a = g.branches[k.branch];
     const Branch& b = g.branches[l.branch];

@@ -15,16 +15,14 @@
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/sample/branch_curve.hpp"
 #include "vesselmesh/tile/convex_hull.hpp"
+#include "vesselmesh/tile/corners.hpp"
+#include "vesselmesh/tile/tube_sections.hpp"
 
 namespace vesselmesh {
 
 namespace {
 
 using Quad = std::array<int32_t, 4>;
-
-/// A branch's point where it turns by more than this is tiled as a joint (see cut_at_corners).
-constexpr double kCornerJointDegrees = 120;
-const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
 
 /// Ways a tunnel is turned (each from where the patch's squares then stand) before its loop is given up.
 constexpr int kTurns = 3;
@@ -40,8 +38,11 @@ constexpr int kSharedTries = 4;
 /// may tilt to clear the other squares (see tilt_square).
 constexpr double kTiltFrom = 2;
 
-/// A tube's kept sections are at most this many of its sampled sections apart (see drop_folds).
-constexpr std::size_t kFoldSkip = 64;
+/// Rounds of pushing a patch's squares out (push_squares) before those that have not cleared the others
+/// are taken as stuck. Branches that run side by side from a joint, their tubes overlapping all along
+/// (vessels duplicated a little apart), push each other's squares on in turn, a fraction of a radius a
+/// round, to their far ends: tens of thousands of rounds on a branch 5e4 radii long.
+constexpr int kPushes = 1000;
 
 /// How a branch that meets a joint is built.
 enum class Kind {
@@ -100,13 +101,16 @@ struct Patch {
   /// tubes' corners on either side of the loop's plane, so that the hull covers the loop and surrounds
   /// the hole even where no branch leaves the loop.
   std::vector<Vec3> rim;
+  std::vector<int32_t> inside;  ///< its stubs and swallowed branches
 };
 
 class Tiler {
  public:
   Tiler(const CenterlineGraph& g, const TileOptions& o)
-      : g_(g), opt_(o), joints_(g.points.size()), corner_(g.points.size(), 0) {
-    cut_at_corners();
+      : g_(g), opt_(o), joints_(g.points.size()) {
+    CutBranches cut = cut_at_corners(g, o.sampling, o.radius_scale);
+    branches_ = std::move(cut.branches);
+    corner_ = std::move(cut.corner);
     for (const Branch& b : branches_) curves_.push_back(branch_curve(g, b));
     kind_.assign(branches_.size(), Kind::tube);
     shared_at_.assign(branches_.size(), 0.0);
@@ -124,8 +128,18 @@ class Tiler {
     for (const BranchCurve& c : curves_) estimate += estimated_sections(c, opt_.sampling);
     if (estimate > 2.0 * static_cast<double>(opt_.max_sections))
       throw SizeLimitError("about " + std::to_string(static_cast<int64_t>(estimate)) + " sections");
-    find_patches();
-    for (const Patch& p : patches_) build_patch(p);
+    // A tunnel or tube whose patch cannot close is given up (build_patch), and the kinds decided again
+    // without it: the patch may then have too few openings for its squares to span it, take in its
+    // body, and push a square that cleared the given-up mouths to the far end of its branch.
+    for (bool closed = false; !closed;) {
+      find_patches();
+      mesh_.vertices.clear();
+      mesh_.axes.clear();
+      mesh_.triangles.clear();
+      mesh_.sections = mesh_.joints = 0;
+      std::fill(shared_vertex_.begin(), shared_vertex_.end(), -1);
+      closed = std::all_of(patches_.begin(), patches_.end(), [&](const Patch& p) { return build_patch(p); });
+    }
     for (std::size_t b = 0; b < branches_.size(); ++b) {
       if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
       if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
@@ -156,136 +170,6 @@ class Tiler {
   bool is_joint(int32_t v) const { return g_.degree(v) >= 3 || corner_[v]; }
   int32_t first_point(int32_t b) const { return branches_[b].points.front(); }
   int32_t last_point(int32_t b) const { return branches_[b].points.back(); }
-
-  /// Cuts the branches at their sharp corners (mark_corners), which then join their two pieces like any
-  /// joint: a convex patch between two squares, pushed along each piece until they clear each other. A
-  /// tube swept round such a corner folds on its inner side (within a few radii its two legs overlap, and
-  /// the smoothed tangent, spanning the legs, leaves the sections near the corner leaning along them).
-  /// Closed rings of degree-2 points are left whole.
-  void cut_at_corners() {
-    for (const Branch& b : g_.branches) {
-      const std::size_t k = b.points.size() - 1;
-      if (b.points.front() == b.points.back() && !is_joint(b.points.front())) {
-        branches_.push_back(b);
-        continue;
-      }
-      mark_corners(b);
-      std::vector<Branch> pieces;
-      for (bool cut = true; cut;) {
-        pieces.clear();
-        std::size_t from = 0;
-        for (std::size_t i = 1; i <= k; ++i) {
-          if (i < k && !corner_[b.points[i]]) continue;
-          Branch piece;
-          piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
-          piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
-          pieces.push_back(std::move(piece));
-          from = i;
-        }
-        cut = false;
-        for (const Branch& piece : pieces) {
-          const int32_t corner = tight_bend(piece);
-          if (corner >= 0) corner_[corner] = 1, cut = true;
-        }
-      }
-      branches_.insert(branches_.end(), pieces.begin(), pieces.end());
-    }
-  }
-
-  /// For each section, the most sections a chain from the first to it keeps, no two kept in a row
-  /// crossing (one's square reaching across the other's plane) and none more than kFoldSkip apart; 0
-  /// where no chain gets. `from` receives each section's predecessor in its chain.
-  std::vector<int> fold_free_chains(const std::vector<Section>& sections,
-                                    std::vector<std::size_t>& from) const {
-    const std::size_t n = sections.size();
-    std::vector<int> count(n, 0);
-    from.assign(n, 0);
-    if (n == 0) return count;
-    count[0] = 1;
-    for (std::size_t i = 1; i < n; ++i)
-      for (std::size_t j = i; j-- > (i > kFoldSkip ? i - kFoldSkip : 0);)  // the nearest first, on ties
-        if (count[j] + 1 > count[i] && count[j] > 0 && !crosses(sections[j], sections[i]))
-          count[i] = count[j] + 1, from[i] = j;
-    return count;
-  }
-
-  /// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
-  /// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
-  /// reaching across the next one's plane, and a tube would fold there however its sections were
-  /// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
-  /// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
-  /// break off; −1 when they get through, or no point of the piece is there.
-  int32_t tight_bend(const Branch& piece) const {
-    const std::size_t k = piece.points.size() - 1;
-    if (k < 2) return -1;
-    const BranchCurve c = branch_curve(g_, piece);
-    const std::vector<double> arcs = sample_branch(c, 0, c.length(), opt_.sampling);
-    std::vector<Section> sections(arcs.size());
-    for (std::size_t i = 0; i < arcs.size(); ++i) {
-      sections[i].center = c.position(arcs[i]);
-      sections[i].radius = c.radius_at(arcs[i]);
-      sections[i].normal = c.tangent(arcs[i]);
-    }
-    std::vector<std::size_t> from;
-    const std::vector<int> count = fold_free_chains(sections, from);
-    const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
-    if (broken == count.size()) return -1;
-    const double r = sections[broken].radius;
-    const double lo = arcs[broken - 1] - 2 * scale() * r, hi = arcs[broken] + 2 * r;
-    auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
-    int32_t sharpest = -1;
-    double lowest = 1;  // cosine of the turn
-    for (std::size_t i = 1; i < k; ++i) {
-      const double s = c.arc[i];
-      if (s < lo || s > hi) continue;
-      const double reach = 2 * g_.radius[piece.points[i]];
-      const Vec3 in = (c.points[i] - at(s - reach)).normalized(),
-                 out = (at(s + reach) - c.points[i]).normalized();
-      if (in.dot(out) < lowest) lowest = in.dot(out), sharpest = piece.points[i];
-    }
-    return sharpest;
-  }
-
-  /// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
-  /// the branch turns that far within two radii either side of a point (a hairpin drawn over several
-  /// short edges: bent tighter than its radius), the sharpest such point, none within two radii of
-  /// another corner.
-  void mark_corners(const Branch& b) {
-    const std::size_t k = b.points.size() - 1;
-    auto point = [&](std::size_t i) { return g_.points[b.points[i]]; };
-    std::vector<double> arc(k + 1, 0.0);
-    for (std::size_t i = 1; i <= k; ++i) arc[i] = arc[i - 1] + (point(i) - point(i - 1)).norm();
-    auto at = [&](double s) {  // the polyline at arc length s, clamped to the branch
-      s = std::clamp(s, 0.0, arc[k]);
-      const std::size_t i =
-          std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), k) - 1;
-      const double f = arc[i + 1] > arc[i] ? (s - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
-      return Vec3((1 - f) * point(i) + f * point(i + 1));
-    };
-    auto sharp = [](const Vec3& in, const Vec3& out) {
-      return in.dot(out) < kCornerJointCosine * in.norm() * out.norm();
-    };
-    std::vector<std::pair<double, std::size_t>> bends;  // (cosine of the turn within reach, point)
-    for (std::size_t i = 1; i < k; ++i) {
-      if (sharp(point(i) - point(i - 1), point(i + 1) - point(i))) {
-        corner_[b.points[i]] = 1;
-        continue;
-      }
-      const double reach = 2 * g_.radius[b.points[i]];
-      const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
-      if (sharp(in, out)) bends.push_back({in.normalized().dot(out.normalized()), i});
-    }
-    std::sort(bends.begin(), bends.end());
-    for (const auto& [cosine, i] : bends) {
-      const double reach = 2 * g_.radius[b.points[i]];
-      bool clear = true;
-      for (std::size_t j = i; clear && j > 1 && arc[i] - arc[j - 1] <= reach; --j)
-        clear = !corner_[b.points[j - 1]];
-      for (std::size_t j = i; clear && j + 1 < k && arc[j + 1] - arc[i] <= reach; ++j)
-        clear = !corner_[b.points[j + 1]];
-      if (clear) corner_[b.points[i]] = 1;
-    }
-  }
 
   double scale() const { return opt_.radius_scale; }
 
@@ -405,7 +289,7 @@ class Tiler {
         e.square.up = shared_up_[e.branch];
       }
     }
-    for (int iteration = 0; iteration < 1000; ++iteration) {
+    for (int iteration = 0; iteration < kPushes; ++iteration) {
       orient_squares(p, attempt);
       bool moved = false;
       for (int32_t i : p.ends) {
@@ -429,6 +313,11 @@ class Tiler {
         e.square = square_at(e, e.t);
       }
       if (!moved) return;
+    }
+    // Squares that still have not cleared the others are stuck where they are, as if at the far end.
+    for (int32_t i : p.ends) {
+      End& e = ends_[i];
+      if (!e.fixed && intrusion(e, p) > 0) e.stuck = true;
     }
   }
 
@@ -463,7 +352,8 @@ class Tiler {
       for (int towards = 0; towards < 8; ++towards) {
         e.square.normal =
             rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
-        if (crosses(e.square, ahead[0]) || crosses(e.square, ahead[1])) continue;
+        if (sections_cross(e.square, ahead[0], scale()) || sections_cross(e.square, ahead[1], scale()))
+          continue;
         const double overlap = intrusion(e, p);
         if (overlap < best) best = overlap, best_normal = e.square.normal;
       }
@@ -520,13 +410,16 @@ class Tiler {
   /// Whether the tube of branch b, between the squares at its two joints, would fold: no chain of its
   /// sections from one square to the other gets there without one reaching across the next one's plane
   /// (fold_free_chains). A short thick branch between two patches that face it from sides a right angle
-  /// apart folded so (brava-records BH0005). Only tubes shorter than four corner radii are looked at;
-  /// longer ones have room to turn, and their bends too tight for sections are corners already.
-  bool tube_folds(int32_t b) const {
+  /// apart folded so (brava-records BH0005). Unless `thorough`, only tubes shorter than four corner radii
+  /// are looked at: longer ones mostly have room to turn, and their bends too tight for sections are
+  /// corners already. Not always: squares pushed out up to a bend of their branch (a loop from a patch
+  /// back to it, 116° turns between its legs) face across it, the tube keeps only those two squares, and
+  /// the straight prism between them runs along the patch's own faces (a non-manifold base mesh).
+  bool tube_folds(int32_t b, bool thorough) const {
     const End &head = ends_[head_[b]], &tail = ends_[tail_[b]];
     const BranchCurve& c = curves_[b];
     const double from = head.t, to = c.length() - tail.t;
-    if (to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
+    if (!thorough && to - from > 4 * scale() * std::max(head.square.radius, tail.square.radius)) return false;
     const std::vector<double> arcs = sample_branch(c, from, to, opt_.sampling);
     std::vector<Section> sections(arcs.size());
     for (std::size_t i = 0; i < arcs.size(); ++i) {
@@ -538,7 +431,7 @@ class Tiler {
     sections.back() = tail.square;
     sections.back().normal = -tail.square.normal;  // along the branch, as the others
     std::vector<std::size_t> chain;
-    return fold_free_chains(sections, chain).back() == 0;
+    return fold_free_chains(sections, scale(), chain).back() == 0;
   }
 
   /// Whether a branch from a joint to a terminal has room for a tube after its joint square: its end lies
@@ -557,7 +450,8 @@ class Tiler {
   /// pushed out round it come to reach across it, up to kSharedTries times; failing that, its joints
   /// merge into one patch, or, when they share one already, it becomes a tunnel. A branch from a joint
   /// to a terminal too short for a tube, or without room for one after its square (room_for_tube),
-  /// becomes a stub. Repeated until nothing changes.
+  /// becomes a stub. Repeated until nothing changes; then the longer tubes are looked at for folds too
+  /// (tube_folds, thorough), once the squares stand where they will, as that costs a chain per tube.
   void find_patches() {
     for (int round = 0;; ++round) {
       collect_patches();
@@ -592,45 +486,59 @@ class Tiler {
           --mesh_.tunnels;
         }
       }
-      if (changed) continue;
-      for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
-        const int32_t b = static_cast<int32_t>(bi);
-        if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
-            (head_[b] < 0 && tail_[b] < 0))
+      if (changed || decide_kinds(false) || decide_kinds(true)) continue;
+      return;
+    }
+  }
+
+  /// Decides the kind of each branch from where its squares stand (find_patches); true when one
+  /// changed. `thorough`: whether tube_folds looks at every tube between two joints, not only short ones.
+  bool decide_kinds(bool thorough) {
+    bool changed = false;
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
+      const int32_t b = static_cast<int32_t>(bi);
+      if (kind_[b] == Kind::swallowed || kind_[b] == Kind::stub || kind_[b] == Kind::tunnel ||
+          (head_[b] < 0 && tail_[b] < 0))
+        continue;
+      const bool both = head_[b] >= 0 && tail_[b] >= 0;
+      if (kind_[b] == Kind::shared) {
+        const Patch& hp = patches_[patch_of_end_[head_[b]]];
+        const Patch& tp = patches_[patch_of_end_[tail_[b]]];
+        if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
+      } else {
+        double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
+        bool stuck = false;
+        for (int32_t i : {head_[b], tail_[b]})
+          if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
+        if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b, thorough) : room_for_tube(b)))
           continue;
-        const bool both = head_[b] >= 0 && tail_[b] >= 0;
-        if (kind_[b] == Kind::shared) {
-          const Patch& hp = patches_[patch_of_end_[head_[b]]];
-          const Patch& tp = patches_[patch_of_end_[tail_[b]]];
-          if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
-        } else {
-          double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
-          bool stuck = false;
-          for (int32_t i : {head_[b], tail_[b]})
-            if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-          if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b) : room_for_tube(b))) continue;
-        }
-        changed = true;
-        if (!both) {
-          kind_[b] = Kind::stub;
-          ++mesh_.absorbed_branches;
-        } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
-          // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
-          // a forest, and the branch that would close the loop makes the hole a tunnel instead.
-          kind_[b] = Kind::tunnel;
-          ++mesh_.absorbed_branches;
-          ++mesh_.tunnels;
-        } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
-          ++shared_tries_[b];
-          kind_[b] = Kind::shared;
-          shared_up_[b] = any_perpendicular(shared_normal_[b]);
-        } else {
-          kind_[b] = Kind::swallowed;
-          joints_.unite(first_point(b), last_point(b));
-          ++mesh_.absorbed_branches;
-        }
       }
-      if (!changed) return;
+      changed = true;
+      give_up_tube(b);
+    }
+    return changed;
+  }
+
+  /// Branch b is no tube (or shared square) at its joints: a stub when it ends at a terminal, else a
+  /// shared square, a tunnel, or swallowed by its joints' merged patch.
+  void give_up_tube(int32_t b) {
+    if (head_[b] < 0 || tail_[b] < 0) {
+      kind_[b] = Kind::stub;
+      ++mesh_.absorbed_branches;
+    } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
+      // Merging its joints would close a loop inside one patch and fill the loop's hole: merges form
+      // a forest, and the branch that would close the loop makes the hole a tunnel instead.
+      kind_[b] = Kind::tunnel;
+      ++mesh_.absorbed_branches;
+      ++mesh_.tunnels;
+    } else if (shared_tries_[b] < kSharedTries && best_shared_square(b) > 0) {
+      ++shared_tries_[b];
+      kind_[b] = Kind::shared;
+      shared_up_[b] = any_perpendicular(shared_normal_[b]);
+    } else {
+      kind_[b] = Kind::swallowed;
+      joints_.unite(first_point(b), last_point(b));
+      ++mesh_.absorbed_branches;
     }
   }
 
@@ -726,6 +634,38 @@ class Tiler {
       }
     }
     find_tunnel_holes();
+    for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
+      const int32_t b = static_cast<int32_t>(bi);
+      if (kind_[b] == Kind::swallowed) patches_[patch_of[joints_.find(first_point(b))]].inside.push_back(b);
+      if (kind_[b] == Kind::stub)
+        patches_[patch_of_end_[head_[b] >= 0 ? head_[b] : tail_[b]]].inside.push_back(b);
+    }
+    for (Patch& p : patches_) add_body(p);
+  }
+
+  /// A patch with fewer than two openings (tube, shared or tunnel squares) is all its component has
+  /// there: its squares alone may span no solid (one square, or stubs' squares at their terminals far
+  /// from the joint) and leave the joints and swallowed branches outside. Such a patch gets round each
+  /// joint, and each point inside its stubs and swallowed branches, six rim points at the corners' reach
+  /// (an octahedron turned by a different angle at each point, so that no four of them are coplanar by
+  /// accident), and its hull covers the branches it took in.
+  void add_body(Patch& p) {
+    const auto openings = std::count_if(p.ends.begin(), p.ends.end(), [&](int32_t i) {
+      return kind_[ends_[i].branch] != Kind::stub;
+    });
+    if (openings >= 2) return;
+    int turn = 0;
+    auto octahedron = [&](const Vec3& at, double r) {
+      const double angle = 2 * M_PI * std::fmod(0.6180339887 * ++turn, 1.0);
+      const Vec3 axis = Vec3(1, 2, 3).normalized();
+      for (int k = 0; k < 3; ++k)
+        for (double side : {1.0, -1.0})
+          p.rim.push_back(at + side * scale() * r * rotate(Vec3::Unit(k), axis, angle));
+    };
+    for (int32_t j : p.joints) octahedron(g_.points[j], g_.radius[j]);
+    for (int32_t b : p.inside)
+      for (std::size_t i = 1; i + 1 < curves_[b].points.size(); ++i)
+        octahedron(curves_[b].points[i], curves_[b].radius[i]);
   }
 
   /// Each tunnel's hole from its loop: the tunnel's branch and the path of swallowed branches (a tree
@@ -835,25 +775,31 @@ class Tiler {
     return {first, first + 3, first + 2, first + 1};
   }
 
-  /// Closes the patch. Where its hull cannot close around a tunnel, the tunnel's loop is given up (its
-  /// branch is swallowed) and the patch tried again without it.
-  void build_patch(Patch p) {
-    while (!close_patch(p)) {
-      const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
-                                       [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
-      if (tunnel == p.ends.end()) {
-        const Vec3& at = g_.points[p.joints[0]];
-        throw std::runtime_error("could not close the surface around the joint at (" +
-                                 std::to_string(at.x()) + ", " + std::to_string(at.y()) + ", " +
-                                 std::to_string(at.z()) + ")");
-      }
-      const int32_t b = ends_[*tunnel].branch;
-      kind_[b] = Kind::swallowed;
+  /// Closes the patch. Where its hull cannot close, a tunnel's loop is given up (its branch is
+  /// swallowed), or failing one, the tube whose square was pushed furthest in its radii (the two legs of
+  /// a hairpin that run on side by side, their squares abreast, each just clear of the other's plane);
+  /// then false is returned, for the kinds to be decided again without it.
+  bool build_patch(const Patch& p) {
+    if (close_patch(p)) return true;
+    const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
+                                     [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
+    if (tunnel != p.ends.end()) {
+      kind_[ends_[*tunnel].branch] = Kind::swallowed;
       --mesh_.tunnels;
-      p.ends.erase(
-          std::remove_if(p.ends.begin(), p.ends.end(), [&](int32_t i) { return ends_[i].branch == b; }),
-          p.ends.end());
+      return false;
     }
+    int32_t furthest = -1;
+    double most = -1;
+    for (int32_t i : p.ends)
+      if (kind_[ends_[i].branch] == Kind::tube && ends_[i].t / ends_[i].square.radius > most)
+        most = ends_[i].t / ends_[i].square.radius, furthest = ends_[i].branch;
+    if (furthest < 0) {
+      const Vec3& at = g_.points[p.joints[0]];
+      throw std::runtime_error("could not close the surface around the joint at (" + std::to_string(at.x()) +
+                               ", " + std::to_string(at.y()) + ", " + std::to_string(at.z()) + ")");
+    }
+    give_up_tube(furthest);
+    return false;
   }
 
   /// The convex hull of the patch's squares with the tubes' and shared squares cut out. When exact
@@ -948,100 +894,6 @@ class Tiler {
     return true;
   }
 
-  /// Whether the squares of consecutive sections a and b (normals along the travel, corners within
-  /// reach_a and reach_b of their centres) reach across each other's planes: b's behind a's, or a's
-  /// ahead of b's.
-  static bool crosses(const Section& a, double reach_a, const Section& b, double reach_b) {
-    const double sine = std::sqrt(std::max(0.0, 1 - std::pow(a.normal.dot(b.normal), 2)));
-    return a.normal.dot(b.center - a.center) < reach_b * sine || b.normal.dot(b.center - a.center) < reach_a * sine;
-  }
-  bool crosses(const Section& a, const Section& b) const {
-    return crosses(a, scale() * a.radius, b, scale() * b.radius);
-  }
-
-  /// The largest distance of a section's corners from its centre: scale() × r, pushed out by the lean
-  /// against `axis` (see add_section).
-  double corner_reach(const Section& s, const Vec3& axis) const {
-    return scale() * s.radius / std::max(std::abs(s.normal.dot(axis)), 0.5);
-  }
-
-  /// Moves the inner sections' centres so that the Loop limit surface passes through where they were.
-  /// Along a tube whose sections each join their neighbours by two edges per corner, the limit of a
-  /// section's corners moves with 2/3 of its own centre and 1/6 of each neighbour's: a bent centerline
-  /// would be cut short by about a sixth of the turn, like a cubic B-spline's control polygon. Solving
-  /// (c[i−1] + 4c[i] + c[i+1])/6 = p[i] (Jacobi sweeps, which halve the error each time) undoes that;
-  /// end sections (joint squares, caps) stay put, and a ring wraps round. On a jagged centerline the
-  /// solution swings from side to side: no centre moves by more than a fifth of its radius, and one
-  /// whose move would fold the tube (its square crossing a neighbour's plane) stays where it was.
-  void place_for_limit(std::vector<Section>& sections, const std::vector<Vec3>& axis, bool ring) const {
-    const std::size_t n = ring ? sections.size() - 1 : sections.size();
-    if (n < 3) return;
-    std::vector<Vec3> target(n), c(n), next(n);
-    for (std::size_t i = 0; i < n; ++i) target[i] = c[i] = sections[i].center;
-    const std::size_t first = ring ? 0 : 1, last = ring ? n : n - 1;
-    for (int sweep = 0; sweep < 40; ++sweep) {
-      next = c;
-      for (std::size_t i = first; i < last; ++i)
-        next[i] = 1.5 * target[i] - 0.25 * (c[(i + n - 1) % n] + c[(i + 1) % n]);
-      std::swap(c, next);
-    }
-    for (std::size_t i = first; i < last; ++i) {
-      const Vec3 move = c[i] - target[i];
-      const double most = 0.2 * sections[i].radius;
-      sections[i].center = target[i] + (move.norm() > most ? most / move.norm() : 1.0) * move;
-    }
-    for (std::size_t i = first; i < last; ++i) {
-      const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
-      const double here = corner_reach(sections[i], axis[i]);
-      if (crosses(sections[before], corner_reach(sections[before], axis[before]), sections[i], here) ||
-          crosses(sections[i], here, sections[after], corner_reach(sections[after], axis[after])))
-        sections[i].center = target[i];
-    }
-    if (ring) sections.back().center = sections.front().center;
-  }
-
-  /// Keeps the most sections such that no two kept in a row cross (one's square reaching across the
-  /// other's plane: the tube would fold between them, on a bend tighter than the corners' radius, or where
-  /// a joint square facing along its chord meets a turning branch). The end sections stay. Dropped one
-  /// by one against the last kept, a section kept at the bottom of a U-bend, facing down its first leg,
-  /// had the whole way back up behind its plane: every later section went, and the tube became one
-  /// straight prism from end to end, through whatever lay beside the bend (brava-records' trunks;
-  /// fixture u_bend_into_a_joint). Kept sections are at most kFoldSkip apart; where no such chain reaches
-  /// the last section, sections are dropped one by one as before.
-  void drop_folds(std::vector<Section>& sections) const {
-    const std::size_t n = sections.size();
-    if (n <= 2) return;
-    std::vector<std::size_t> from;
-    const std::vector<int> count = fold_free_chains(sections, from);
-    std::vector<Section> kept;
-    if (count[n - 1] > 0) {
-      for (std::size_t i = n - 1; i > 0; i = from[i]) kept.push_back(sections[i]);
-      kept.push_back(sections.front());
-      std::reverse(kept.begin(), kept.end());
-    } else {
-      kept.push_back(sections.front());
-      for (std::size_t i = 1; i + 1 < n; ++i)
-        if (!crosses(kept.back(), sections[i])) kept.push_back(sections[i]);
-      while (kept.size() > 1 && crosses(kept.back(), sections.back())) kept.pop_back();
-      kept.push_back(sections.back());
-    }
-    sections = std::move(kept);
-  }
-
-  /// When a branch keeps only its end sections and even these cross (it turns by more than a right angle
-  /// within a few radii), its terminal ends face along the chord between the two, or along the joint
-  /// square at its other end: a straight piece with parallel squares cannot fold.
-  void unfold_ends(std::vector<Section>& sections, bool free_front, bool free_back) const {
-    if (sections.size() != 2) return;
-    Section &a = sections.front(), &b = sections.back();
-    const Vec3 chord = b.center - a.center;
-    if (!(chord.norm() > 0) || !crosses(a, b)) return;
-    if (free_front) a.normal = chord.normalized();
-    if (free_back) b.normal = chord.normalized();
-    if (crosses(a, b) && free_front != free_back)
-      (free_front ? a.normal : b.normal) = (free_front ? b : a).normal;
-  }
-
   void build_tube(int32_t b) {
     const BranchCurve& c = curves_[b];
     const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
@@ -1063,15 +915,15 @@ class Tiler {
     if (head) sections.front().normal = head->square.normal;
     if (tail) sections.back().normal = -tail->square.normal;
     if (!ring) {
-      drop_folds(sections);
-      unfold_ends(sections, !head, !tail);
+      drop_folds(sections, scale());
+      unfold_ends(sections, !head, !tail, scale());
     }
     const std::size_t m = sections.size() - 1;
     // Where the tube really runs at each section: along the polyline through the centres.
     std::vector<Vec3> axis(m + 1);
     for (std::size_t i = 0; i <= m; ++i)
       axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
-    place_for_limit(sections, axis, ring);
+    place_for_limit(sections, axis, ring, scale());
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;

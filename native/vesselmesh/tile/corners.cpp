@@ -1,0 +1,139 @@
+#include "vesselmesh/tile/corners.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "vesselmesh/sample/branch_curve.hpp"
+#include "vesselmesh/tile/tube_sections.hpp"
+
+namespace vesselmesh {
+
+namespace {
+
+/// A point of a branch where it turns by more than this is tiled as a joint.
+constexpr double kCornerJointDegrees = 120;
+const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
+
+/// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
+/// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
+/// reaching across the next one's plane, and a tube would fold there however its sections were
+/// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
+/// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
+/// break off; −1 when they get through, or no point of the piece is there.
+int32_t tight_bend(const CenterlineGraph& g, const Branch& piece, const SamplingOptions& sampling,
+                   double scale) {
+  const std::size_t k = piece.points.size() - 1;
+  if (k < 2) return -1;
+  const BranchCurve c = branch_curve(g, piece);
+  const std::vector<double> arcs = sample_branch(c, 0, c.length(), sampling);
+  std::vector<Section> sections(arcs.size());
+  for (std::size_t i = 0; i < arcs.size(); ++i) {
+    sections[i].center = c.position(arcs[i]);
+    sections[i].radius = c.radius_at(arcs[i]);
+    sections[i].normal = c.tangent(arcs[i]);
+  }
+  std::vector<std::size_t> from;
+  const std::vector<int> count = fold_free_chains(sections, scale, from);
+  const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
+  if (broken == count.size()) return -1;
+  const double r = sections[broken].radius;
+  const double lo = arcs[broken - 1] - 2 * scale * r, hi = arcs[broken] + 2 * r;
+  auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
+  int32_t sharpest = -1;
+  double lowest = 1;  // cosine of the turn
+  for (std::size_t i = 1; i < k; ++i) {
+    const double s = c.arc[i];
+    if (s < lo || s > hi) continue;
+    const double reach = 2 * g.radius[piece.points[i]];
+    const Vec3 in = (c.points[i] - at(s - reach)).normalized(),
+               out = (at(s + reach) - c.points[i]).normalized();
+    if (in.dot(out) < lowest) lowest = in.dot(out), sharpest = piece.points[i];
+  }
+  return sharpest;
+}
+
+/// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
+/// the branch turns that far within two radii either side of a point (a hairpin drawn over several
+/// short edges: bent tighter than its radius), the sharpest such point, none within two radii of
+/// another corner.
+void mark_corners(const CenterlineGraph& g, const Branch& b, std::vector<char>& corner) {
+  const std::size_t k = b.points.size() - 1;
+  auto point = [&](std::size_t i) { return g.points[b.points[i]]; };
+  std::vector<double> arc(k + 1, 0.0);
+  for (std::size_t i = 1; i <= k; ++i) arc[i] = arc[i - 1] + (point(i) - point(i - 1)).norm();
+  auto at = [&](double s) {  // the polyline at arc length s, clamped to the branch
+    s = std::clamp(s, 0.0, arc[k]);
+    const std::size_t i =
+        std::min<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin(), k) - 1;
+    const double f = arc[i + 1] > arc[i] ? (s - arc[i]) / (arc[i + 1] - arc[i]) : 0.0;
+    return Vec3((1 - f) * point(i) + f * point(i + 1));
+  };
+  auto sharp = [](const Vec3& in, const Vec3& out) {
+    return in.dot(out) < kCornerJointCosine * in.norm() * out.norm();
+  };
+  std::vector<std::pair<double, std::size_t>> bends;  // (cosine of the turn within reach, point)
+  for (std::size_t i = 1; i < k; ++i) {
+    if (sharp(point(i) - point(i - 1), point(i + 1) - point(i))) {
+      corner[b.points[i]] = 1;
+      continue;
+    }
+    const double reach = 2 * g.radius[b.points[i]];
+    const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
+    if (sharp(in, out)) bends.push_back({in.normalized().dot(out.normalized()), i});
+  }
+  std::sort(bends.begin(), bends.end());
+  for (const auto& [cosine, i] : bends) {
+    const double reach = 2 * g.radius[b.points[i]];
+    bool clear = true;
+    for (std::size_t j = i; clear && j > 1 && arc[i] - arc[j - 1] <= reach; --j)
+      clear = !corner[b.points[j - 1]];
+    for (std::size_t j = i; clear && j + 1 < k && arc[j + 1] - arc[i] <= reach; ++j)
+      clear = !corner[b.points[j + 1]];
+    if (clear) corner[b.points[i]] = 1;
+  }
+}
+
+}  // namespace
+
+/// Cuts the branches at their sharp corners (mark_corners), which then join their two pieces like any
+/// joint: a convex patch between two squares, pushed along each piece until they clear each other. A
+/// tube swept round such a corner folds on its inner side (within a few radii its two legs overlap, and
+/// the smoothed tangent, spanning the legs, leaves the sections near the corner leaning along them).
+/// Closed rings of degree-2 points are left whole.
+CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale) {
+  CutBranches out;
+  std::vector<Branch>& branches = out.branches;
+  std::vector<char>& corner = out.corner;
+  corner.assign(g.points.size(), 0);
+  for (const Branch& b : g.branches) {
+    const std::size_t k = b.points.size() - 1;
+    if (b.points.front() == b.points.back() && g.degree(b.points.front()) < 3 && !corner[b.points.front()]) {
+      branches.push_back(b);
+      continue;
+    }
+    mark_corners(g, b, corner);
+    std::vector<Branch> pieces;
+    for (bool cut = true; cut;) {
+      pieces.clear();
+      std::size_t from = 0;
+      for (std::size_t i = 1; i <= k; ++i) {
+        if (i < k && !corner[b.points[i]]) continue;
+        Branch piece;
+        piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
+        piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
+        pieces.push_back(std::move(piece));
+        from = i;
+      }
+      cut = false;
+      for (const Branch& piece : pieces) {
+        const int32_t bend = tight_bend(g, piece, sampling, scale);
+        if (bend >= 0) corner[bend] = 1, cut = true;
+      }
+    }
+    branches.insert(branches.end(), pieces.begin(), pieces.end());
+  }
+  return out;
+}
+
+}  // namespace vesselmesh

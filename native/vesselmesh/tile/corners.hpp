@@ -1,0 +1,22 @@
+#pragma once
+// Where a branch bends too sharply for a tube (a turn over 120° at one point or within two radii of
+// one, or a bend tighter than its squares' corners reach), the base mesh cuts it and tiles the point as
+// a joint of its two pieces.
+
+#include <vector>
+
+#include "vesselmesh/graph/centerline_graph.hpp"
+#include "vesselmesh/sample/sample.hpp"
+
+namespace vesselmesh {
+
+struct CutBranches {
+  std::vector<Branch> branches;  ///< the graph's branches, cut at the corners
+  std::vector<char> corner;      ///< per point: a corner, tiled as a joint of two branches
+};
+
+/// The graph's branches cut at their sharp corners; closed rings of degree-2 points are left whole.
+/// Sections are sampled as `sampling` says, their corners at `scale` × radius.
+CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale);
+
+}  // namespace vesselmesh
