@@ -109,7 +109,10 @@ void print_check(const CheckReport& r, const std::string& file) {
               << "\n"
               << "  longest edge         " << r.fidelity->longest_edge << " local radii ("
               << r.fidelity->longest_edge_length << "), at " << point_text(r.fidelity->longest_edge_at)
-              << "\n";
+              << "\n"
+              << "  longest edge off     " << r.fidelity->longest_edge_off_tubes
+              << " local radii (its middle over half a radius off the tubes), at "
+              << point_text(r.fidelity->longest_edge_off_tubes_at) << "\n";
 }
 
 }  // namespace
