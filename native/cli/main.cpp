@@ -2,7 +2,7 @@
 //   vesselmesh info FILE [--json] [--radius-array NAME]
 //   vesselmesh synth -o FILE --sections N [--loops K] [--seed S] [--binary]
 //   vesselmesh mesh IN -o OUT.{ply,obj,stl} [--levels N] [--sampling ...] [--alpha A] [--beta B]
-//                   [--caps flat|open] [--crossings separate|keep] [--fit onto|inward|none]
+//                   [--tolerance T] [--max-step S] [--caps flat|open] [--crossings separate|keep] [--fit onto|inward|none]
 //                   [--stats-json FILE] [--curvature]
 //   vesselmesh check MESH [--centerline IN] [--json]
 #include <CLI/CLI.hpp>
@@ -110,7 +110,10 @@ void print_check(const CheckReport& r, const std::string& file) {
               << "\n"
               << "  longest edge         " << r.fidelity->longest_edge << " local radii ("
               << r.fidelity->longest_edge_length << "), at " << point_text(r.fidelity->longest_edge_at)
-              << "\n";
+              << "\n"
+              << "  longest edge off     " << r.fidelity->longest_edge_off_tubes
+              << " local radii (its middle over half a radius off the tubes), at "
+              << point_text(r.fidelity->longest_edge_off_tubes_at) << "\n";
 }
 
 }  // namespace
@@ -172,6 +175,12 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   mesh->add_option("--beta", mesh_options.sampling.beta, "curvature weight, in median radii")
       ->check(CLI::NonNegativeNumber);
+  mesh->add_option("--tolerance", mesh_options.sampling.tolerance,
+                   "sections further apart than --alpha's where a straight piece of tube stays within this "
+                   "fraction of the local radius of the centerline (0: --alpha's spacing alone)")
+      ->check(CLI::NonNegativeNumber);
+  mesh->add_option("--max-step", mesh_options.sampling.max_step, "the longest such piece, in radii")
+      ->check(CLI::Range(2.0, std::numeric_limits<double>::max()));
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
       ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");

@@ -261,7 +261,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "mesh",
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
-         const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
+         double tolerance, double max_step, const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
          double threshold, const std::string& measure, double angle, const std::string& crossings,
          const std::string& fit, int64_t max_triangles, const std::string& verify) {
         MeshOptions o;
@@ -279,6 +279,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         o.sampling.method = choice("sampling", sampling, sampling_names());
         o.sampling.alpha = alpha;
         o.sampling.beta = beta;
+        o.sampling.tolerance = tolerance;
+        o.sampling.max_step = max_step;
         o.caps = choice("caps", caps, caps_names());
         MeshResult r;
         {
@@ -295,7 +297,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         return out;
       },
       py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
-      py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("caps") = "flat", py::arg("curvature") = false,
+      py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("tolerance") = SamplingOptions().tolerance,
+      py::arg("max_step") = SamplingOptions().max_step, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
       py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("crossings") = "separate",
       py::arg("fit") = "onto", py::arg("max_triangles") = MeshOptions().max_triangles,
@@ -310,6 +313,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
       "crossings: vessels whose tubes cross away from a joint, 'separate' (moved apart) or 'keep'.\n"
       "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.\n"
+      "tolerance: sections further apart than alpha's where a straight piece of tube stays within this\n"
+      "fraction of the local radius of the centerline (0: alpha's spacing alone), in pieces of up to\n"
+      "max_step radii.\n"
       "Raises SizeLimitError (a RuntimeError), before the work, for a surface over max_triangles, and\n"
       "ValueError for options out of range. stats['verified'] is the surface's own check ('auto': closed\n"
       "manifold, and crossings up to a million triangles; 'full'; 'topology'): its 'problem' is empty when\n"

@@ -735,7 +735,7 @@ TEST(RadiusFidelity, FacesSpanningAcrossTheTubesAreAreaOffThemThoughTheirCorners
 // neighbouring vertices on top of the first tube to one on top of the second, as a joint's hull reaching
 // across to a vessel it does not belong to. Its corners lie on the tubes, and so do all the vertices; its
 // centroid lies far off them, and its long edges span the gap.
-TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndALongEdge) {
+TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndALongEdgeOffThem) {
   for (double s : kScales) {
     TriMesh mesh = merged(closed_tube(Vec3::Zero(), s * Vec3(20, 0, 0), s, 40, 16),
                           closed_tube(s * Vec3(0, 6, 0), s * Vec3(20, 6, 0), s, 40, 16));
@@ -745,6 +745,7 @@ TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndAL
     // A 16-sided ring's chords: centroids 1 − cos(π/16) inside at most, edges 0.5 along and 0.39 round.
     EXPECT_LT(clean.largest_centroid_offset, 0.02) << s;
     EXPECT_NEAR(clean.longest_edge, std::hypot(0.5, 2 * std::sin(M_PI / 16)), 1e-9) << s;
+    EXPECT_EQ(clean.longest_edge_off_tubes, 0) << s;  // every edge's midpoint lies on its tube
 
     // The fin, from the top of ring 20 of each tube (and ring 21 of the first).
     auto top = [&](int tube, int ring) {
@@ -767,6 +768,8 @@ TEST(RadiusFidelity, AFinFromOneTubeToAnotherShowsAsACentroidFarOffTheTubesAndAL
     EXPECT_NEAR(fin.longest_edge_length, (pc - far).norm(), 1e-9 * s) << s;
     EXPECT_LT((fin.longest_edge_at - 0.5 * (pc + far)).norm(), 1e-12 * s) << s;
     EXPECT_GT(fin.longest_edge, 5.9) << s;
+    EXPECT_EQ(fin.longest_edge_off_tubes, fin.longest_edge) << s;  // the fin's reaches across, off the tubes
+    EXPECT_LT((fin.longest_edge_off_tubes_at - fin.longest_edge_at).norm(), 1e-12 * s) << s;
     EXPECT_GT(fin.largest_centroid_offset, 1.2) << s;
     EXPECT_EQ(fin.abs_relative_error.max, clean.abs_relative_error.max) << s;  // the vertices cannot tell
   }

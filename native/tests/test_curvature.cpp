@@ -113,6 +113,9 @@ TriMesh vessel_tube(double scale, int levels) {
   MeshOptions options;
   options.subdivision.levels = levels;
   options.subdivision.method = Refinement::uniform;
+  // Sections a diameter apart (Eq. 1 alone, as on a bend), so that the middle half holds rings enough to
+  // measure on; a straight tube's sections otherwise go up to 12 radii apart.
+  options.sampling.tolerance = 0;
   return mesh_centerline(build_graph(fixtures::straight(40, scale)), options).mesh;
 }
 

@@ -165,6 +165,10 @@ TEST(ExtremeInputs, PipelineRefusesOptionsOutOfRangeNamingThem) {
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.alpha = 0; }), "alpha"));
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.beta = -1; }), "beta"));
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.beta = INFINITY; }), "beta"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.tolerance = std::nan(""); }), "tolerance"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.tolerance = -0.01; }), "tolerance"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.max_step = 1; }), "max_step"));
+  EXPECT_TRUE(contains(message([](MeshOptions& o) { o.sampling.max_step = INFINITY; }), "max_step"));
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.subdivision.threshold = std::nan(""); }), "threshold"));
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.subdivision.levels = 5; }), "levels"));
   EXPECT_TRUE(contains(message([](MeshOptions& o) { o.max_triangles = 0; }), "max_triangles"));

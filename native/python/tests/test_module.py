@@ -84,6 +84,8 @@ def test_extreme_arrays_are_refused_as_the_command_line_refuses_them(points, rad
 @pytest.mark.parametrize("kwargs, message", [
     (dict(alpha=float("nan")), "alpha"), (dict(alpha=0.0), "alpha"), (dict(alpha=-1.0), "alpha"),
     (dict(alpha=float("inf")), "alpha"), (dict(beta=float("nan")), "beta"), (dict(beta=-1.0), "beta"),
+    (dict(tolerance=float("nan")), "tolerance"), (dict(tolerance=-0.01), "tolerance"),
+    (dict(max_step=1.0), "max_step"),
     (dict(threshold=float("nan")), "threshold"), (dict(angle=float("nan")), "angle"),
     (dict(max_triangles=0), "max_triangles"), (dict(verify="sometimes"), "verify"),
 ])
@@ -91,6 +93,16 @@ def test_mesh_refuses_options_the_command_line_refuses(project_data, kwargs, mes
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     with pytest.raises(ValueError, match=message):
         vm.mesh(graph, **kwargs)
+
+
+def test_straight_vessel_takes_fewer_sections_unless_the_tolerance_is_zero():
+    # 80 radii straight in points a radius apart: Eq. 1 alone (tolerance 0) puts a section every diameter
+    # (41); the sparse default, Eq. 1 steps graded from the ends and pieces of up to 32 radii (15).
+    points = np.stack([np.zeros(81), np.zeros(81), np.arange(81.0)], axis=-1)
+    graph = vm.Graph(points, np.stack([np.arange(80), np.arange(1, 81)], axis=-1), radius=np.ones(81))
+    sparse = vm.mesh(graph, levels=0)["stats"]["sections"]
+    assert vm.mesh(graph, levels=0, tolerance=0)["stats"]["sections"] > 2 * sparse
+    assert vm.mesh(graph, levels=0, max_step=4)["stats"]["sections"] > sparse
 
 
 def test_mesh_over_the_triangle_limit_stops_before_the_work_saying_what_to_change(project_data):

@@ -286,10 +286,18 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
       const double radius = std::max(local_radius[u], local_radius[w]);
       if (!(radius > 0)) continue;  // both ends at a cap
       const double length = (mesh.vertices[w] - mesh.vertices[u]).norm();
+      const Vec3 middle = 0.5 * (mesh.vertices[u] + mesh.vertices[w]);
       if (length > r.longest_edge * radius) {
         r.longest_edge = length / radius;
         r.longest_edge_length = length;
-        r.longest_edge_at = 0.5 * (mesh.vertices[u] + mesh.vertices[w]);
+        r.longest_edge_at = middle;
+      }
+      if (length > r.longest_edge_off_tubes * radius && !cones.near_cap(middle)) {
+        const ConeDistance m = cones.nearest(middle, &hint);
+        if (std::abs(m.distance) > kOffTube * m.radius) {
+          r.longest_edge_off_tubes = length / radius;
+          r.longest_edge_off_tubes_at = middle;
+        }
       }
     }
   }
@@ -380,6 +388,8 @@ std::string report_json(const CheckReport& report, int indent) {
     fidelity["longest_edge"] = {{"relative", report.fidelity->longest_edge},
                                 {"length", report.fidelity->longest_edge_length},
                                 {"at", point(report.fidelity->longest_edge_at)}};
+    fidelity["longest_edge_off_tubes"] = {{"relative", report.fidelity->longest_edge_off_tubes},
+                                          {"at", point(report.fidelity->longest_edge_off_tubes_at)}};
   }
   return j.dump(indent);
 }

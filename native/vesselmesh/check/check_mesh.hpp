@@ -79,6 +79,10 @@ struct FidelityReport {
   double longest_edge = 0;
   double longest_edge_length = 0;
   Vec3 longest_edge_at = Vec3::Zero();
+  /// The longest edge, in local radii, whose midpoint lies more than half the local radius off the tubes:
+  /// one reaching across (a fin, a web), where an edge along a straight tube may be long and lie on it.
+  double longest_edge_off_tubes = 0;
+  Vec3 longest_edge_off_tubes_at = Vec3::Zero();
   std::vector<float> per_vertex;    ///< signed relative error of each vertex, NaN for cap vertices
 };
 
