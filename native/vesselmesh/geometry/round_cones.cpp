@@ -333,14 +333,17 @@ std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) co
   std::vector<std::array<int32_t, 2>> out;
   // Boxes widened by kNearTube radii hold every pair within half the sum of their radii of each other.
   (gap > 0 ? near_ : tight_).for_each_overlapping_pair([&](int32_t e, int32_t f) {
-    const RoundCone& k = cones_[e];
-    const RoundCone& l = cones_[f];
-    const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
-    if (k.branch != l.branch ? overlap(e, f, margin) : folds_onto(e, f, margin))
-      out.push_back({std::min(e, f), std::max(e, f)});
+    if (tubes_overlap(e, f, gap)) out.push_back({std::min(e, f), std::max(e, f)});
   });
   std::sort(out.begin(), out.end());
   return out;
+}
+
+bool RoundCones::tubes_overlap(int32_t e, int32_t f, double gap) const {
+  const RoundCone& k = cones_[e];
+  const RoundCone& l = cones_[f];
+  const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
+  return k.branch != l.branch ? overlap(e, f, margin) : folds_onto(e, f, margin);
 }
 
 std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) { return tube_overlaps(g, RoundCones(g)); }

@@ -136,6 +136,8 @@ class RoundCones {
   /// away from the joints they share, or of one branch that comes back onto itself. With `gap` > 0 (at
   /// most 0.5), also those whose tubes come within `gap` times the sum of their larger radii of each other.
   std::vector<std::array<int32_t, 2>> overlapping_edges(double gap = 0) const;
+  /// True when overlapping_edges(gap) holds the pair (e, f).
+  bool tubes_overlap(int32_t e, int32_t f, double gap = 0) const;
 
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;

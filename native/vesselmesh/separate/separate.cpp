@@ -262,13 +262,16 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
   return out;
 }
 
-// The pairs of edges to move apart: those that cross, and those of `near` (crossing_edges within kGap)
-// where one of them lies within the reach of a joint at an end of its branch and the other does not: a
+// The pairs of edges to move apart, of `near` (crossing_edges within kGap): those that cross (the pairs
+// crossing_edges without a gap gives, taken from `near` rather than searched again), and those where one
+// of them lies within the reach of a joint at an end of its branch and the other does not: a
 // joint's patch is the hull of its squares and bulges out of its tubes, onto a vessel passing by
 // (records.swc, brava-bg0003's raw twin: a vessel 5 % of a radius from joint 430's tubes).
 std::vector<std::array<int32_t, 2>> to_separate(const CenterlineGraph& g, const RoundCones& cones,
                                                 const std::vector<std::array<int32_t, 2>>& near) {
-  std::vector<std::array<int32_t, 2>> out = crossing_edges(g, cones);
+  std::vector<std::array<int32_t, 2>> out;
+  for (const auto& [e, f] : near)
+    if (cones.tubes_overlap(e, f)) out.push_back({e, f});
   auto near_joint = [&](const RoundCone& k, double s) {
     const Branch& b = g.branches[k.branch];
     for (int32_t j : {b.points.front(), b.points.back()})
