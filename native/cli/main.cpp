@@ -113,7 +113,11 @@ void print_check(const CheckReport& r, const std::string& file) {
               << "\n"
               << "  longest edge off     " << r.fidelity->longest_edge_off_tubes
               << " local radii (its middle over half a radius off the tubes), at "
-              << point_text(r.fidelity->longest_edge_off_tubes_at) << "\n";
+              << point_text(r.fidelity->longest_edge_off_tubes_at) << "\n"
+              << "  axis with no surface " << r.fidelity->missing_axis
+              << " local radii (outside the surface by over a radius)"
+              << (r.fidelity->missing_axis > 0 ? ", first at " + point_text(r.fidelity->missing_axis_at) : "")
+              << "\n";
 }
 
 }  // namespace

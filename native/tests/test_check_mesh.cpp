@@ -624,6 +624,24 @@ TEST(RadiusFidelity, CylinderMatchesItsCenterlineRadiusAwayFromTheCaps) {
   }
 }
 
+TEST(RadiusFidelity, AVesselWithNoSurfaceRoundItIsMissingAxisOfItsLength) {
+  for (double s : kScales) {
+    const TriMesh mesh = closed_tube(Vec3::Zero(), Vec3(10 * s, 0, 0), s, 20, 32);
+    const CenterlineGraph whole = straight_runs({{Vec3::Zero(), Vec3(10 * s, 0, 0)}}, s, 10);
+    EXPECT_EQ(radius_fidelity(mesh, whole).missing_axis, 0) << s;
+    // A branch of the centerline the surface lost: from (5, 0, 0) out along y to (5, 12, 0), radius s. Its
+    // axis lies inside the tube up to y = s, within a radius of it up to 2 s, and in its cap's reach from a
+    // radius before its end: 9 radii of it have no surface round them (to the sampling's half radius).
+    const CenterlineGraph branched = straight_runs(
+        {{Vec3(0, 0, 0), Vec3(5 * s, 0, 0)}, {Vec3(5 * s, 0, 0), Vec3(10 * s, 0, 0)},
+         {Vec3(5 * s, 0, 0), Vec3(5 * s, 12 * s, 0)}}, s, 12);
+    const FidelityReport f = radius_fidelity(mesh, branched);
+    EXPECT_NEAR(f.missing_axis, 9, 0.5) << s;
+    EXPECT_NEAR(f.missing_axis_at.x(), 5 * s, 1e-9 * s) << s;
+    EXPECT_NEAR(f.missing_axis_at.y(), 2 * s, 0.5 * s) << s;
+  }
+}
+
 TEST(RadiusFidelity, CylinderAgainstATenPercentWiderCenterlineIsOneEleventhTooThin) {
   for (double s : kScales) {
     const TriMesh mesh = closed_tube(Vec3::Zero(), Vec3(10 * s, 0, 0), s, 20, 32);

@@ -123,6 +123,9 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
             if furthest and longest:
                 col.label(text=f"Furthest face {furthest['relative']:.2f} radii off, "
                                f"longest edge {longest['relative']:.1f} radii")
+            missing = check["fidelity"].get("missing_axis")
+            if missing and missing["relative"] > 0:
+                col.label(text=f"Vessel with no surface: {missing['relative']:.1f} radii of its length", icon="ERROR")
         layout.operator("vesselmesh.check", icon="CHECKMARK")
 
 

@@ -215,6 +215,17 @@ def test_check_says_how_far_the_furthest_face_and_the_longest_edge_reach_off_the
     assert with_fin["longest_edge"]["relative"] > longest["relative"]
 
 
+def test_check_says_how_much_of_the_centerline_has_no_surface_round_it():
+    points = [[0, 0, 0], [0, 0, 5], [0, 0, 10], [0, 8, 5]]
+    trunk = vm.Graph(points[:3], np.array([[0, 1], [1, 2]], np.int64), radius=[1.0] * 3)
+    surface = vm.mesh(trunk, levels=1)
+    assert vm.check(surface["vertices"], surface["faces"], trunk)["fidelity"]["missing_axis"]["relative"] == 0
+    # The same surface against the trunk with a branch of 8 radii that it lacks.
+    branched = vm.Graph(points, np.array([[0, 1], [1, 2], [1, 3]], np.int64), radius=[1.0] * 4)
+    missing = vm.check(surface["vertices"], surface["faces"], branched)["fidelity"]["missing_axis"]
+    assert 4 < missing["relative"] < 8 and missing["at"][1] > 1
+
+
 def test_check_rejects_faces_out_of_range():
     with pytest.raises(vm.InputError, match="face 0"):
         vm.check(np.zeros((3, 3)), np.array([[0, 1, 5]]))

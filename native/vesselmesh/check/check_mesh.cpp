@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "vesselmesh/geometry/bvh.hpp"
@@ -90,6 +91,85 @@ nlohmann::ordered_json distribution_json(const Distribution& d) {
   j["mean"] = d.mean;
   j["count"] = d.count;
   return j;
+}
+
+// A hierarchy over the faces' boxes, for distances to the surface and rays through it.
+Bvh face_hierarchy(const TriMesh& mesh) {
+  std::vector<Box> boxes(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int32_t v : mesh.faces[f]) boxes[f].extend(mesh.vertices[v]);
+  return Bvh(boxes);
+}
+
+double distance_to_surface(const Bvh& faces, const TriMesh& mesh, const Vec3& p) {
+  double best = kInf;
+  faces.search([&](const Box& b) { return b.signed_distance(p); }, best, [&](int32_t f) {
+    const Triangle t = corners(mesh.vertices, mesh.faces[f]);
+    best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
+  });
+  return best;
+}
+
+bool ray_meets_box(const Vec3& p, const Vec3& d, const Box& b) {
+  double near = 0, far = kInf;
+  for (int k = 0; k < 3; ++k) {
+    double t0 = (b.lo[k] - p[k]) / d[k], t1 = (b.hi[k] - p[k]) / d[k];
+    if (t0 > t1) std::swap(t0, t1);
+    near = std::max(near, t0), far = std::min(far, t1);
+    if (near > far) return false;
+  }
+  return true;
+}
+
+// Möller–Trumbore: whether the ray from p along d passes through triangle t.
+bool ray_meets_triangle(const Vec3& p, const Vec3& d, const Triangle& t) {
+  const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0], h = d.cross(e2);
+  const double a = e1.dot(h);
+  if (a == 0) return false;  // the ray runs in the triangle's plane
+  const Vec3 s = p - t[0], q = s.cross(e1);
+  const double u = s.dot(h) / a, v = d.dot(q) / a;
+  return u >= 0 && v >= 0 && u + v <= 1 && e2.dot(q) / a > 0;
+}
+
+// Whether p lies inside a closed surface: the parity of the faces a ray from p passes through, along three
+// directions, by majority (a ray through an edge or a corner may count a face twice or not at all).
+bool inside_surface(const Bvh& faces, const TriMesh& mesh, const Vec3& p) {
+  static const Vec3 kDirections[3] = {Vec3(0.5773, 0.5774, 0.5776).normalized(),
+                                      Vec3(-0.2673, 0.8018, -0.5346).normalized(),
+                                      Vec3(0.8729, -0.2183, 0.4364).normalized()};
+  int odd = 0;
+  for (const Vec3& d : kDirections) {
+    int crossings = 0;
+    const double hit = 0.5;  // the search visits the faces whose box the ray meets (bound 0)
+    faces.search([&](const Box& b) { return ray_meets_box(p, d, b) ? 0.0 : 1.0; }, hit, [&](int32_t f) {
+      if (ray_meets_triangle(p, d, corners(mesh.vertices, mesh.faces[f]))) ++crossings;
+    });
+    odd += crossings % 2;
+  }
+  return odd >= 2;
+}
+
+// The axis of the input lying outside the surface by more than its radius, in local radii of length
+// (FidelityReport::missing_axis), and the first such sample.
+std::pair<double, Vec3> missing_axis(const TriMesh& mesh, const RoundCones& cones) {
+  std::pair<double, Vec3> out{0.0, Vec3::Zero()};
+  if (mesh.faces.empty()) return out;
+  const Bvh faces = face_hierarchy(mesh);
+  constexpr double kMaxSamples = 64;  // per edge: an edge hundreds of radii long says enough with these
+  for (std::size_t e = 0; e < cones.size(); ++e) {
+    const RoundCone& k = cones.cone(static_cast<int32_t>(e));
+    const double length = (k.c1 - k.c0).norm();
+    const int n = 1 + static_cast<int>(std::min(std::ceil(length / (0.5 * std::min(k.r0, k.r1))), kMaxSamples));
+    for (int i = 0; i < n; ++i) {
+      const double u = (i + 0.5) / n, radius = k.radius_at(u);
+      const Vec3 p = k.point_at(u);
+      if (cones.near_cap(p) || distance_to_surface(faces, mesh, p) <= radius || inside_surface(faces, mesh, p))
+        continue;
+      if (out.first == 0) out.second = p;
+      out.first += length / n / radius;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -303,6 +383,7 @@ FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& cente
   }
   r.area_off_tubes = area > 0 ? off / area : 0.0;
   r.centroid_error = distribution(std::move(centroid_error), std::move(face_area));
+  std::tie(r.missing_axis, r.missing_axis_at) = missing_axis(mesh, cones);
   return r;
 }
 
@@ -311,18 +392,10 @@ SurfaceDistanceReport surface_distance(const TriMesh& from, const TriMesh& to, c
   require_valid_indices(to);
   SurfaceDistanceReport r;
   if (centerline.edges.empty() || to.faces.empty()) return r;
-  std::vector<Box> boxes(to.faces.size());
-  for (std::size_t f = 0; f < to.faces.size(); ++f)
-    for (int32_t v : to.faces[f]) boxes[f].extend(to.vertices[v]);
-  const Bvh bvh(boxes);
+  const Bvh faces = face_hierarchy(to);
   const RoundCones cones(centerline);
   const auto relative_distance = [&](const Vec3& p) {
-    double best = kInf;
-    bvh.search([&](const Box& b) { return b.signed_distance(p); }, best, [&](int32_t f) {
-      const Triangle t = corners(to.vertices, to.faces[f]);
-      best = std::min(best, (closest_point_on_triangle(p, t[0], t[1], t[2]) - p).norm());
-    });
-    return best / cones.nearest(p).radius;
+    return distance_to_surface(faces, to, p) / cones.nearest(p).radius;
   };
   std::vector<double> at_vertices, at_centroids;
   for (const Vec3& p : from.vertices) at_vertices.push_back(relative_distance(p));
@@ -390,6 +463,8 @@ std::string report_json(const CheckReport& report, int indent) {
                                 {"at", point(report.fidelity->longest_edge_at)}};
     fidelity["longest_edge_off_tubes"] = {{"relative", report.fidelity->longest_edge_off_tubes},
                                           {"at", point(report.fidelity->longest_edge_off_tubes_at)}};
+    fidelity["missing_axis"] = {{"relative", report.fidelity->missing_axis},
+                                {"at", point(report.fidelity->missing_axis_at)}};
   }
   return j.dump(indent);
 }

@@ -83,6 +83,13 @@ struct FidelityReport {
   /// one reaching across (a fin, a web), where an edge along a straight tube may be long and lie on it.
   double longest_edge_off_tubes = 0;
   Vec3 longest_edge_off_tubes_at = Vec3::Zero();
+  /// The input's axis lying outside the surface by more than its radius (samples every half radius along
+  /// each edge, caps left out), in local radii of length, and the first such sample: a vessel, or the end
+  /// of one, that the surface lost. The other measures look from the surface to the tubes and say nothing
+  /// of a tube with no surface round it. A vessel the separate stage moved lies within its radius of its
+  /// axis, since the moves stay below two radii.
+  double missing_axis = 0;
+  Vec3 missing_axis_at = Vec3::Zero();
   std::vector<float> per_vertex;    ///< signed relative error of each vertex, NaN for cap vertices
 };
 
