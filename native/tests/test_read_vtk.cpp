@@ -22,46 +22,17 @@
 #include <string_view>
 #include <vector>
 
+#include "allocation_probe.hpp"
 #include "test_support.hpp"
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/read/read.hpp"
 #include "vesselmesh/read/text.hpp"
 #include "vesselmesh/write/centerline_vtk.hpp"
 
-// Allocation probe: this test program's operator new notes the largest single request made while a
-// LargestAllocation is alive, so that a test can show that the reader did not allocate what a count claims.
-namespace {
-std::atomic<bool> g_probing{false};
-std::atomic<std::size_t> g_largest{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_probing.load(std::memory_order_relaxed)) {
-    std::size_t seen = g_largest.load(std::memory_order_relaxed);
-    while (n > seen && !g_largest.compare_exchange_weak(seen, n, std::memory_order_relaxed)) {
-    }
-  }
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-
 namespace vesselmesh {
 namespace {
 
 const std::string kSource = "fixture.vtk";
-
-/// The largest single operator new request made during its life.
-class LargestAllocation {
- public:
-  LargestAllocation() {
-    g_largest = 0;
-    g_probing = true;
-  }
-  ~LargestAllocation() { g_probing = false; }
-  std::size_t bytes() const { return g_largest; }
-};
 
 CenterlineData parse(const std::string& bytes, const std::string& radius_array = "") {
   ReadOptions options;
