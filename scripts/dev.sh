@@ -16,21 +16,10 @@ jobs=$(nproc 2>/dev/null || echo 2)
 packages=(cmake g++ make libeigen3-dev libopenmesh-dev pybind11-dev python3-dev python3-pybind11 python3-numpy
           python3-pytest libpugixml-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libgtest-dev blender time)
 
-install_missing() {
-  local missing=()
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  [ ${#missing[@]} -eq 0 ] && return
-  echo "== installing: ${missing[*]}"
-  local sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
-}
+source "$root/scripts/install_missing.sh"
 
 build() {
-  install_missing
+  install_missing "${packages[@]}"
   echo "== building (Release) in build/"
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j"$jobs"
@@ -81,7 +70,7 @@ run_tests() {
 # Under the sanitizers the big-input timing prints and the shared-data surface suites (Shared…, …/SharedCohort, …/SharedSet: they
 # only repeat the same code on larger inputs) would take most of an hour; they run in the Release build.
 run_sanitized() {
-  install_missing
+  install_missing "${packages[@]}"
   echo "== C++ tests under AddressSanitizer and UBSan"
   cmake -S "$root" -B "$build/sanitize" -DCMAKE_BUILD_TYPE=Debug -DVESSELMESH_SANITIZE=ON \
         -DVESSELMESH_PYTHON=OFF >/dev/null

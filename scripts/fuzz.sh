@@ -21,18 +21,7 @@ jobs=$(( $(nproc 2>/dev/null || echo 2) < 2 ? 1 : 2 ))  # other work shares the 
 packages=(clang-14 libclang-rt-14-dev cmake make libeigen3-dev libpugixml-dev zlib1g-dev nlohmann-json3-dev
           libcli11-dev)
 
-install_missing() {
-  local missing=()
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  [ ${#missing[@]} -eq 0 ] && return
-  echo "== installing: ${missing[*]}"
-  local sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
-}
+source "$root/scripts/install_missing.sh"
 
 # The project's own test fixtures as extra seeds, in the form each target reads.
 fixtures() {
@@ -48,7 +37,7 @@ fixtures() {
   echo "$dir"
 }
 
-install_missing
+install_missing "${packages[@]}"
 for t in "${targets[@]}"; do
   [ -f "$root/native/fuzz/fuzz_$t.cpp" ] || { echo "unknown fuzz target '$t'" >&2; exit 2; }
 done
