@@ -2,7 +2,8 @@
 
 Every surface must be a closed manifold with one component and genus 0, at levels 0 and 2, in units
 of any size. Run as a script, it also reports how many of them cross themselves, and how many outside
-the input tubes that overlap (not yet zero; the separate stage moves crossing vessels out of those):
+the input tubes that overlap (not yet zero; the separate stage moves crossing vessels out of those),
+at levels 0 to 2; the target, at most 5 of 1,000 at any level, is a test expected to fail until it holds:
 
     PYTHONPATH=build/python /usr/bin/python3 native/python/tests/test_random_trees.py [TREES]
 """
@@ -32,14 +33,14 @@ def random_tree(rng):
     return np.array(points), np.array(edges), np.array(radius)
 
 
-def meshed_trees(count, seed, scale=1.0):
+def meshed_trees(count, seed, scale=1.0, levels=(0, 2)):
     rng = np.random.default_rng(seed)
     for _ in range(count):
         points, edges, radius = random_tree(rng)
         graph = vm.Graph(scale * points, edges, radius=scale * radius)
-        for levels in (0, 2):
-            result = vm.mesh(graph, levels=levels)
-            yield graph, levels, vm.check(result["vertices"], result["faces"], graph)
+        for level in levels:
+            result = vm.mesh(graph, levels=level)
+            yield graph, level, vm.check(result["vertices"], result["faces"], graph)
 
 
 @pytest.mark.parametrize("seed, scale", [(1, 1.0), (2, 1.0), (3, 1e-4), (4, 1e4)])
@@ -50,13 +51,28 @@ def test_random_trees_give_closed_manifolds_of_genus_zero(seed, scale):
         assert (topology["components"], topology["genus"]) == (1, 0), (seed, levels, topology)
 
 
+def crossing_counts(count, levels=(0, 1, 2)):
+    """Per level, how many of `count` random trees (seeds 1 and 2, half each) cross themselves, and how many of
+    those cross outside overlapping input tubes."""
+    crossed, outside = dict.fromkeys(levels, 0), dict.fromkeys(levels, 0)
+    for seed in (1, 2):
+        for _, level, report in meshed_trees(count // 2, seed, levels=levels):
+            pairs = report["intersections"]
+            crossed[level] += pairs["pairs"] > 0
+            outside[level] += pairs["pairs"] > pairs["pairs_in_overlapping_tubes"]
+    return crossed, outside
+
+
+# Open: joints whose hulls reach a neighbouring tube after the separate stage has parted the input's tubes
+# (docs/pipeline.md). Strict, so that the mark goes once the target holds.
+@pytest.mark.xfail(strict=True, reason="12 / 11 / 11 of 1,000 random trees cross themselves at levels 0 / 1 / 2")
+def test_at_most_five_of_a_thousand_random_trees_cross_themselves_at_any_level():
+    crossed, _ = crossing_counts(1000)
+    assert max(crossed.values()) <= 5, crossed
+
+
 if __name__ == "__main__":
     count = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
-    crossed, outside = [0, 0], [0, 0]
-    for seed in (1, 2):
-        for _, levels, report in meshed_trees(count // 2, seed):
-            pairs = report["intersections"]
-            crossed[levels // 2] += pairs["pairs"] > 0
-            outside[levels // 2] += pairs["pairs"] > pairs["pairs_in_overlapping_tubes"]
-    print(f"{count} random trees: {crossed[0]} cross themselves at level 0 ({outside[0]} outside overlapping "
-          f"input tubes), {crossed[1]} at level 2 ({outside[1]})")
+    crossed, outside = crossing_counts(count)
+    print(f"{count} random trees, crossing themselves (of those, outside overlapping input tubes): "
+          + ", ".join(f"level {level} {crossed[level]} ({outside[level]})" for level in crossed))
