@@ -329,8 +329,8 @@ class VESSELMESH_OT_check(bpy.types.Operator):
                              f"{report['fidelity']['area_off_tubes']:.1%} of its area off the tubes, "
                              f"the furthest face {report['fidelity']['largest_centroid_offset']['relative']:.2f} "
                              f"radii off them, the longest edge {report['fidelity']['longest_edge']['relative']:.1f} "
-                             f"radii, {report['fidelity']['missing_axis']['relative']:.1f} radii of vessel with no "
-                             f"surface")
+                             f"radii, {report['fidelity']['missing_axis']['relative']:.1f} radii of centerline with no "
+                             f"surface round it")
         return {"FINISHED"}
 
 

@@ -125,7 +125,7 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
                                f"longest edge {longest['relative']:.1f} radii")
             missing = check["fidelity"].get("missing_axis")
             if missing and missing["relative"] > 0:
-                col.label(text=f"Vessel with no surface: {missing['relative']:.1f} radii of its length", icon="ERROR")
+                col.label(text=f"Centerline with no surface round it: {missing['relative']:.1f} radii")
         layout.operator("vesselmesh.check", icon="CHECKMARK")
 
 
