@@ -152,6 +152,27 @@ TEST(Graph, CoordinatesWithinAMillionthOfTheRadiusOfZeroAreZero) {
   }
 }
 
+TEST(Graph, AHugeRadiusDoesNotMoveItsPointsCoordinatesToZero) {
+  // A millionth of a 4e9 radius is 4000: the point (0.001, 4, 3.9) stays where it is (a fuzz finding: set
+  // to zero after the merging, it fell onto the other end of its edge, which became zero long).
+  CenterlineData d = polyline({{0, 0, 0}, {0.001, 4, 3.9375}});
+  d.radius = {1, 4e9};
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.snapped_coordinates, 0);
+  EXPECT_EQ(g.points[1], Vec3(0.001, 4, 3.9375));
+}
+
+TEST(Graph, PointsSetToZeroMergeWhereTheyMeet) {
+  // Two points a little over the merge tolerance apart, both within it of zero in the coordinate they differ
+  // in: set to zero, they coincide, and merge rather than leaving an edge of no length.
+  CenterlineData d = polyline({{0.9e-6, 5, 5}, {-0.9e-6, 5, 5}, {0, 5, 6}});
+  const CenterlineGraph g = build_graph(d);
+  EXPECT_EQ(g.report.snapped_coordinates, 2);
+  EXPECT_EQ(g.report.merged_points, 1);
+  ASSERT_EQ(g.edges.size(), 1u);
+  EXPECT_GT((g.points[g.edges[0][1]] - g.points[g.edges[0][0]]).norm(), 0.5);
+}
+
 TEST(Graph, IsolatedPointsAreDroppedAndReported) {
   CenterlineData d = polyline({{0, 0, 0}, {1, 0, 0}});
   d.points.push_back({7, 7, 7});
@@ -196,9 +217,10 @@ TEST(Graph, SixWayJointIsOnePointOfDegreeSix) {
 
 TEST(Graph, PointsThatMergeInAChainLeavingNoEdgeAreRefusedNamingTheSource) {
   // Each point within a millionth of a radius of the next, the first and last twice as far apart: every
-  // edge joins two points that merge, though no single edge is that short end to end.
+  // edge joins two points that merge, though no single edge is that short end to end. Away from the
+  // origin, where coordinates that small would be set to zero first.
   CenterlineData d;
-  d.points = {Vec3(0, 0, 0), Vec3(0.6e-6, 0, 0), Vec3(1.2e-6, 0, 0)};
+  d.points = {Vec3(5, 0, 0), Vec3(5 + 0.6e-6, 0, 0), Vec3(5 + 1.2e-6, 0, 0)};
   d.radius = {1, 1, 1};
   d.edges = {{0, 1}, {1, 2}, {0, 2}};
   try {

@@ -27,8 +27,8 @@ std::vector<double> point_radius(const CenterlineData& data) {
 
 /// Representative of every point after merging coincident ones. Points are hashed into cells twice
 /// as large as the largest tolerance, so a point's partners lie in the 2×2×2 cells on its side.
-std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vector<double>& r) {
-  const std::size_t n = data.points.size();
+std::vector<int32_t> merge_coincident(const std::vector<Vec3>& points, const std::vector<double>& r) {
+  const std::size_t n = points.size();
   UnionFind sets(n);
   std::vector<int32_t> rep(n);
   const double cell = 2.0 * kCoincidentFraction * *std::max_element(r.begin(), r.end());
@@ -51,7 +51,7 @@ std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vec
   std::vector<Vec3> scaled(n);
   std::vector<std::pair<Key, int32_t>> sorted(n);
   for (std::size_t i = 0; i < n; ++i) {
-    scaled[i] = data.points[i] / cell;
+    scaled[i] = points[i] / cell;
     sorted[i] = {key_of(scaled[i]), static_cast<int32_t>(i)};
   }
   std::sort(sorted.begin(), sorted.end());
@@ -74,7 +74,7 @@ std::vector<int32_t> merge_coincident(const CenterlineData& data, const std::vec
         const int32_t j = sorted[s].second;
         if (static_cast<std::size_t>(j) <= i) continue;
         const double tol = kCoincidentFraction * std::min(r[i], r[j]);
-        if ((data.points[i] - data.points[j]).norm() <= tol) sets.unite(static_cast<int32_t>(i), j);
+        if ((points[i] - points[j]).norm() <= tol) sets.unite(static_cast<int32_t>(i), j);
       }
     }
   }
@@ -163,24 +163,28 @@ CenterlineGraph build_graph(const CenterlineData& data, const std::string& sourc
   g.radius_per_edge = data.radius.empty();
 
   const std::vector<double> r = point_radius(data);
-  const std::vector<int32_t> rep = merge_coincident(data, r);
+  // A coordinate within a millionth of the smallest radius of zero is zero: a denormal or a number near
+  // one (1e-320) would underflow the products of the exact geometric predicates (geometry/predicates.hpp)
+  // and spoil the hulls of the joints. Before the merging, so that it sees where the points are; relative
+  // to the smallest radius, so that a huge radius does not move its point's coordinates far.
+  double smallest = std::numeric_limits<double>::infinity();
+  for (double x : r)
+    if (x > 0) smallest = std::min(smallest, x);
+  std::vector<Vec3> points = data.points;
+  for (Vec3& p : points)
+    for (int k = 0; k < 3; ++k)
+      if (p[k] != 0 && std::abs(p[k]) <= kCoincidentFraction * smallest) p[k] = 0, ++report.snapped_coordinates;
+  const std::vector<int32_t> rep = merge_coincident(points, r);
   for (std::size_t i = 0; i < rep.size(); ++i) report.merged_points += rep[i] != static_cast<int32_t>(i);
 
   // Drop self-loops and merge parallel edges into the first, which keeps the larger radius at each end
   // (a vessel traced twice is as wide as the wider trace); new point ids follow first use by an edge.
-  // A coordinate within the merge tolerance of zero is zero: the point moves by less than a millionth
-  // of its radius, and a denormal or a number near one (1e-320) would underflow the products of the
-  // exact geometric predicates (geometry/predicates.hpp) and spoil the hulls of the joints.
   std::vector<int32_t> new_id(data.points.size(), -1);
   auto id_of = [&](int32_t original) {
     int32_t& id = new_id[rep[original]];
     if (id < 0) {
       id = static_cast<int32_t>(g.points.size());
-      Vec3 p = data.points[rep[original]];
-      for (int k = 0; k < 3; ++k)
-        if (p[k] != 0 && std::abs(p[k]) <= kCoincidentFraction * r[rep[original]])
-          p[k] = 0, ++report.snapped_coordinates;
-      g.points.push_back(p);
+      g.points.push_back(points[rep[original]]);
     }
     return id;
   };

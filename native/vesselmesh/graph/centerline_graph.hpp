@@ -21,7 +21,7 @@ struct NormalisationReport {
   int64_t zero_length_edges = 0;  ///< edges dropped because their two ends coincide
   int64_t duplicate_edges = 0;    ///< edges merged into another that joins the same two points
   int64_t isolated_points = 0;    ///< points on no edge, dropped
-  int64_t snapped_coordinates = 0;  ///< coordinates within a millionth of their point's radius of 0, set to 0
+  int64_t snapped_coordinates = 0;  ///< coordinates within a millionth of the smallest radius of 0, set to 0
 };
 
 /// A chain of edges between two points of degree other than 2 (or a closed ring of degree-2 points).
