@@ -92,6 +92,11 @@ TEST(ExtremeInputs, RadiiBelowTheRoundingOfTheCoordinatesAreRefusedNamingThePoin
   }
 }
 
+TEST(ExtremeInputs, RadiiSpanningMoreThanTwelveOrdersAreRefusedNamingTheThinnest) {
+  const std::string file = extreme("radius_1e100_next_to_2.swc");
+  expect_error(mesh(file), file, {"point 1: radius 2 is below 1e-12 of the data set's size 1e+100", "largest radius"});
+}
+
 TEST(ExtremeInputs, RadiusOfTenToThe308IsRefused) {
   const std::string file = extreme("radius_1e308.swc");
   expect_error(mesh(file), file, {"point 0: radius 1e+308 is beyond 1e+150"});
@@ -112,6 +117,13 @@ TEST(ExtremeInputs, ForkWithAnEdgeOfTenMillionRadiiStopsAtTheTriangleLimitBefore
   EXPECT_TRUE(contains(run.output, "beyond the limit of 50000000")) << run.output;
   EXPECT_TRUE(contains(run.output, "--max-triangles")) << run.output;
   EXPECT_FALSE(std::filesystem::exists(temp_path("out.ply")));
+}
+
+TEST(ExtremeInputs, RadiusOfTenToTheElevenNextToTwoStopsAtTheTriangleLimitBeforeTheWork) {
+  const std::string file = extreme("radius_1e11_next_to_2.swc");
+  const CliRun run = mesh(file, "--levels 1");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "beyond the limit of 50000000")) << run.output;
 }
 
 TEST(ExtremeInputs, TriangleLimitIsTheCallersToSet) {

@@ -40,12 +40,17 @@ void check_scale(const CenterlineData& data, const std::string& source) {
     lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     farthest = std::max(farthest, p.norm());
   }
-  const double size = std::max((hi - lo).norm(), farthest);
+  // The largest radius too: a surface spans at least its widest tube, and radii of 1e100 next to 2 (a fuzz
+  // finding) gave a tube 1e99 radii long to sample and the separate stage moves of 1e99.
+  double widest = 0;
+  for (const double r : data.radius) widest = std::max(widest, r);
+  for (const double r : data.edge_radius) widest = std::max(widest, r);
+  const double size = std::max({(hi - lo).norm(), farthest, widest});
   auto too_thin = [&](double r) { return r < kMinRadiusOfSize * size; };
   auto thin_message = [&](double r) {
     return "radius " + number_text(r) + " is below " + number_text(kMinRadiusOfSize) +
            " of the data set's size " + number_text(size) +
-           " (its extent or its distance from the origin): too thin to mesh at this scale";
+           " (its extent, its distance from the origin or its largest radius): too thin to mesh at this scale";
   };
   for (std::size_t i = 0; i < data.radius.size(); ++i)
     if (too_thin(data.radius[i])) throw InputError(source, element("point", i), thin_message(data.radius[i]));

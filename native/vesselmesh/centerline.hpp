@@ -25,8 +25,8 @@ struct CenterlineData {
 /// bounded by the surface it makes rather than by numbers in the file.
 /// Coordinates and radii at most this large in magnitude: their squares and products stay finite.
 constexpr double kMaxCoordinate = 1e150;
-/// Radii at least this fraction of the data set's size (the larger of its extent and its distance from
-/// the origin): a tube thinner than that is lost in the rounding of its own coordinates.
+/// Radii at least this fraction of the data set's size (the largest of its extent, its distance from the
+/// origin and its largest radius): a tube thinner than that is lost in the rounding of its own coordinates.
 constexpr double kMinRadiusOfSize = 1e-12;
 /// Edges at most this many times as long as the smaller radius at their ends: sections go about a
 /// diameter apart, so longer tubes are beyond any surface that fits in memory.

@@ -32,6 +32,13 @@ constexpr std::size_t kMostPointsPerPiece = 512;
 /// At most this many field samples per edge of the polyline (at its points and between them).
 constexpr int kSamplesPerEdge = 8;
 
+/// ⌈x⌉ within [1, most], as an int: x, a length over a step, may be far beyond int (an edge of 1e98 radii,
+/// a radius of 1e100 next to ordinary ones: a fuzz finding) or NaN.
+int count_within(double x, int most) {
+  const double n = std::ceil(x);
+  return n > 1 ? static_cast<int>(std::min(n, static_cast<double>(most))) : 1;
+}
+
 struct Spacing {
   const BranchCurve& curve;
   double alpha, beta;
@@ -91,7 +98,7 @@ void straight_reach(Spacing& sp, double tolerance, double max_step, double start
   for (std::size_t i = 0; i + 1 < c.arc.size(); ++i) {
     const double edge = c.arc[i + 1] - c.arc[i];
     const double r = std::min(c.radius[i], c.radius[i + 1]);
-    const int n = std::clamp(static_cast<int>(std::ceil(edge / r)), 1, kSamplesPerEdge);
+    const int n = count_within(edge / r, kSamplesPerEdge);
     for (int k = 0; k < n; ++k) sp.at.push_back(c.arc[i] + edge * k / n);
   }
   sp.at.push_back(c.length());
@@ -277,7 +284,7 @@ void even_out(const Spacing& sp, std::vector<double>& arcs, const std::vector<ch
   for (double stop : stops) {
     const double from = at.back();
     const double least = 0.5 * std::min(sp.g(from), sp.g(stop));
-    const int steps = std::clamp(static_cast<int>(std::ceil((stop - from) / least)), 1, 16);
+    const int steps = count_within((stop - from) / least, 16);
     for (int k = 1; k <= steps; ++k) {
       const double s0 = at.back(), s1 = from + (stop - from) * k / steps;
       tau.push_back(tau.back() + 0.25 * (s1 - s0) * (1 / sp.g(s0) + 1 / sp.g(s1)));
@@ -326,12 +333,20 @@ void validate(const SamplingOptions& options) {
                                 std::to_string(options.max_sections));
 }
 
+namespace {
+
+/// About how many sections lie on [start, end]: its length over the spacing, knot to knot.
+double sections_between(const Spacing& sp, double start, double end) {
+  double sections = 1, from = start;
+  for (const double knot : sp.curve.arc)
+    if (knot > start && knot < end) sections += (knot - from) / (sp.g(from) + sp.g(knot)), from = knot;
+  return sections + (end - from) / (sp.g(from) + sp.g(end));
+}
+
+}  // namespace
+
 double estimated_sections(const BranchCurve& curve, const SamplingOptions& options) {
-  const Spacing sp = spacing(curve, options, 0, curve.length());
-  double sections = 1;
-  for (std::size_t i = 0; i + 1 < curve.arc.size(); ++i)
-    sections += (curve.arc[i + 1] - curve.arc[i]) / (sp.g(curve.arc[i]) + sp.g(curve.arc[i + 1]));
-  return sections;
+  return sections_between(spacing(curve, options, 0, curve.length()), 0, curve.length());
 }
 
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
@@ -339,6 +354,11 @@ std::vector<double> sample_branch(const BranchCurve& curve, double start, double
   validate(options);
   const Spacing sp = spacing(curve, options, start, end);
   if (end <= start) return {start, end};
+  // Refused before the work when far beyond the limit (twice: the estimate follows the arc, the steps the
+  // chords): near it, each step of a branch 1e10 radii long costs a bisection (8 s to reach 1.5 million).
+  if (sections_between(sp, start, end) > 2.0 * static_cast<double>(options.max_sections))
+    throw SizeLimitError("a branch takes about " +
+                         std::to_string(static_cast<int64_t>(sections_between(sp, start, end))) + " sections");
   std::vector<double> arcs =
       options.method == Sampling::unidirectional
           ? unidirectional(sp, start, end, options.max_sections)

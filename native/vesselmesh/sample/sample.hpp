@@ -50,7 +50,8 @@ double estimated_sections(const BranchCurve& curve, const SamplingOptions& optio
 /// solves |x(s′) − x(s)| = g(s′) + g(s) on the continuous curve (bisection on a bracket, so it always
 /// converges); g is clamped to at least r/4 so sections never nearly coincide, and is Eq. 1's at start and
 /// end, where the tube meets a joint's patch or a cap. The work is proportional to the sections placed
-/// and the curve's points, and stops at options.max_sections.
+/// and the curve's points, and stops at options.max_sections (before the work when the estimate over
+/// [start, end] is twice that).
 std::vector<double> sample_branch(const BranchCurve& curve, double start, double end,
                                   const SamplingOptions& options);
 

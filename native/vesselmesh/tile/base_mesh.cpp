@@ -108,7 +108,9 @@ class Tiler {
  public:
   Tiler(const CenterlineGraph& g, const TileOptions& o)
       : g_(g), opt_(o), joints_(g.points.size()) {
-    CutBranches cut = cut_at_corners(g, o.sampling, o.radius_scale);
+    SamplingOptions sampling = o.sampling;  // the corners are found by sampling each branch as a whole
+    sampling.max_sections = o.max_sections;
+    CutBranches cut = cut_at_corners(g, sampling, o.radius_scale);
     branches_ = std::move(cut.branches);
     corner_ = std::move(cut.corner);
     for (const Branch& b : branches_) curves_.push_back(branch_curve(g, b));
