@@ -328,8 +328,11 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
         const double d = std::abs(arc(p) - at);
         if (d >= half) return false;
         if (h.degree(branch.points[p]) > 2) return true;  // joints stay, and with them their patches
-        const Vec3 wanted = 0.5 * (1 + std::cos(M_PI * d / half)) * m;
         Vec3& current = move[branch.points[p]];
+        // Faded, m is no larger: where several pairs ask a point to move, most asks end here (a dense star
+        // spent a quarter of its time on the cosine).
+        if (m.squaredNorm() <= current.squaredNorm()) return true;
+        const Vec3 wanted = 0.5 * (1 + std::cos(M_PI * d / half)) * m;
         if (wanted.squaredNorm() > current.squaredNorm()) current = wanted;
         return true;
       };

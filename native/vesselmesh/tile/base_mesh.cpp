@@ -230,15 +230,22 @@ class Tiler {
 
   /// How far the corners of `p`'s squares other than e's reach past the plane of e's square, plus a
   /// margin: ≤ 0 when they all lie behind it, and e's square is a face of the patch's hull.
-  double intrusion(const End& e, const Patch& p) const {
-    const double margin = 0.1 * scale() * e.square.radius;
-    double reach = -std::numeric_limits<double>::infinity();
+  double intrusion(const End& e, const Patch& p) const { return reach_past(e.square, others(e, p)); }
+
+  /// The corners of `p`'s squares other than e's, and its rim: what e's square must have behind its plane.
+  std::vector<Vec3> others(const End& e, const Patch& p) const {
+    std::vector<Vec3> out(p.rim.begin(), p.rim.end());
     for (int32_t i : p.ends)
       if (&ends_[i] != &e)
-        for (int k = 0; k < 4; ++k)
-          reach = std::max(reach, e.square.normal.dot(ends_[i].square.corner(k, scale()) - e.square.center));
-    for (const Vec3& r : p.rim) reach = std::max(reach, e.square.normal.dot(r - e.square.center));
-    return reach + margin;
+        for (int k = 0; k < 4; ++k) out.push_back(ends_[i].square.corner(k, scale()));
+    return out;
+  }
+
+  /// How far `points` reach past the plane of square `s`, plus a margin.
+  double reach_past(const Section& s, const std::vector<Vec3>& points) const {
+    double reach = -std::numeric_limits<double>::infinity();
+    for (const Vec3& q : points) reach = std::max(reach, s.normal.dot(q - s.center));
+    return reach + 0.1 * scale() * s.radius;
   }
 
   /// Pushes each free square along its branch until it is a face of the patch's hull; out of the reach of
@@ -348,15 +355,23 @@ class Tiler {
       ahead[k].radius = c.radius_at(s);
       ahead[k].normal = e.at_start ? c.tangent(s) : Vec3(-c.tangent(s));
     }
+    const std::vector<Vec3> in_front = others(e, p);  // the same for every tilt tried
+    const Vec3& n = upright.normal;
+    // The tilted normals: n turned about axes an eighth of a turn apart round it, from `across` (Rodrigues'
+    // formula for vectors at right angles: few trigonometric calls, in a search that runs for every square
+    // that intrudes in every push).
+    std::array<Vec3, 8> turned;  // axis × n for each axis
+    for (int towards = 0; towards < 8; ++towards)
+      turned[towards] = std::cos(M_PI / 4 * towards) * across.cross(n) + std::sin(M_PI / 4 * towards) * across;
     for (int tilt = 1; tilt <= kSharedTilts; ++tilt) {
       double best = 0;
-      Vec3 best_normal = upright.normal;
+      Vec3 best_normal = n;
+      const double c = std::cos(M_PI / 12 * tilt), sn = std::sin(M_PI / 12 * tilt);
       for (int towards = 0; towards < 8; ++towards) {
-        e.square.normal =
-            rotate(upright.normal, rotate(across, upright.normal, M_PI / 4 * towards), M_PI / 12 * tilt);
+        e.square.normal = c * n + sn * turned[towards];
         if (sections_cross(e.square, ahead[0], scale()) || sections_cross(e.square, ahead[1], scale()))
           continue;
-        const double overlap = intrusion(e, p);
+        const double overlap = reach_past(e.square, in_front);
         if (overlap < best) best = overlap, best_normal = e.square.normal;
       }
       if (best < 0) {
