@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The project's one entry point (the README's quick start calls it).
 #   scripts/dev.sh demo   install what is missing, build, run the main job on the built-in default
-#   scripts/dev.sh test      install what is missing, build, run the tests (C++, Python, Blender): ~5 minutes
+#   scripts/dev.sh test      install what is missing, build, run the tests (C++, Python, Blender): ~4 minutes on 2 cores
 #   scripts/dev.sh sanitize  the C++ tests again under AddressSanitizer and UBSan (CI runs it; ~15 minutes)
 #   scripts/dev.sh build     install what is missing and build
 #   scripts/dev.sh bench     build, then the benchmark suite (core and Blender) as one table: docs/benchmarks.md;
