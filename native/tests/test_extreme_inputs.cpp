@@ -97,6 +97,11 @@ TEST(ExtremeInputs, RadiiSpanningMoreThanTwelveOrdersAreRefusedNamingTheThinnest
   expect_error(mesh(file), file, {"point 1: radius 2 is below 1e-12 of the data set's size 1e+100", "largest radius"});
 }
 
+TEST(ExtremeInputs, RadiusBelowTenToTheMinus100IsRefusedNamingThePoint) {
+  const std::string file = extreme("scale_1e-154.swc");
+  expect_error(mesh(file), file, {"point 0: radius 1e-154 is below 1e-100", "scale the data up"});
+}
+
 TEST(ExtremeInputs, RadiusOfTenToThe308IsRefused) {
   const std::string file = extreme("radius_1e308.swc");
   expect_error(mesh(file), file, {"point 0: radius 1e+308 is beyond 1e+150"});

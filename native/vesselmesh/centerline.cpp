@@ -26,7 +26,7 @@ void check_radii(const std::vector<double>& radii, const char* kind, const std::
   }
 }
 
-/// The limits of kMaxCoordinate, kMinRadiusOfSize and kMaxLengthOverRadius, on data whose indices and
+/// The limits of kMaxCoordinate, kMinRadiusOfSize, kMinRadius and kMaxLengthOverRadius, on data whose indices and
 /// radii are otherwise valid.
 void check_scale(const CenterlineData& data, const std::string& source) {
   const bool per_point = !data.radius.empty();
@@ -57,6 +57,15 @@ void check_scale(const CenterlineData& data, const std::string& source) {
   for (std::size_t e = 0; e < data.edge_radius.size(); ++e)
     if (too_thin(data.edge_radius[e]))
       throw InputError(source, element("edge", e), thin_message(data.edge_radius[e]));
+  auto too_small = [&](const std::vector<double>& radii, const char* kind) {
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      if (radii[i] < kMinRadius)
+        throw InputError(source, element(kind, i),
+                         "radius " + number_text(radii[i]) + " is below " + number_text(kMinRadius) +
+                             ": the surface's areas would underflow double precision (scale the data up)");
+  };
+  too_small(data.radius, "point");
+  too_small(data.edge_radius, "edge");
 
   bool any_length = false;
   for (std::size_t e = 0; e < data.edges.size(); ++e) {

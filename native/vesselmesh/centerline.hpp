@@ -28,6 +28,9 @@ constexpr double kMaxCoordinate = 1e150;
 /// Radii at least this fraction of the data set's size (the largest of its extent, its distance from the
 /// origin and its largest radius): a tube thinner than that is lost in the rounding of its own coordinates.
 constexpr double kMinRadiusOfSize = 1e-12;
+/// Radii at least this large: the surface's areas (lengths squared) and the predicates' volumes (cubed)
+/// stay normal doubles. A data set of radius 1e-154 gave faces whose areas underflowed to zero.
+constexpr double kMinRadius = 1e-100;
 /// Edges at most this many times as long as the smaller radius at their ends: sections go about a
 /// diameter apart, so longer tubes are beyond any surface that fits in memory.
 constexpr double kMaxLengthOverRadius = 1e7;
