@@ -8,6 +8,7 @@
 #include <string>
 
 #include "vesselmesh/curvature/curvature.hpp"
+#include "vesselmesh/curvature/tube_curvature.hpp"
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/round/round.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
@@ -141,6 +142,8 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
   start = Clock::now();
+  // The tubes' own curvature, read before rounding takes the tube properties off (tube_curvature.hpp).
+  const TubeCurvature tubes = options.curvature ? tube_curvature(result.mesh) : TubeCurvature{};
   result.rounded_vertices = round_tubes(result.mesh).moved;
   record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
@@ -155,8 +158,9 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   }
   if (options.curvature) {
     start = Clock::now();
-    for (VertexProperty& p : curvature_properties(estimate_curvature(result.mesh)))
-      result.mesh.vertex_properties.push_back(std::move(p));
+    VertexCurvature curvature = estimate_curvature(result.mesh);
+    blend_tube_curvature(curvature, tubes);
+    for (VertexProperty& p : curvature_properties(curvature)) result.mesh.vertex_properties.push_back(std::move(p));
     if (!cones) cones.emplace(*centerline);
     const std::vector<double> radius = local_radius(result.mesh.vertices, *cones);
     result.mesh.vertex_properties.push_back({"radius", std::vector<float>(radius.begin(), radius.end())});

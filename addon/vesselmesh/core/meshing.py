@@ -69,10 +69,9 @@ class MeshJob:
     """One meshing by the core, in worker threads (the core releases the GIL while it works).
 
     `prepare()` (reading a file, building the graph) runs in the first worker, then the core builds the
-    surface, then that worker lists its edges for Blender while the other estimates the surface's
-    curvature and colours it, when `color` asks for that: (measure, colour map, percentile) as
-    colors.color_by takes them (None for no curvature). Blender builds the mesh from the surface and its
-    edges while the curvature is still being estimated; the main thread then only hands Blender the colours.
+    surface, with its curvature when `color` asks for colours: (measure, colour map, percentile) as
+    colors.color_by takes them (None for no curvature). Then that worker lists its edges for Blender while
+    the other turns the curvature into colours; the main thread then only hands Blender the colours.
 
     The job says where it is: stage() gives the index and name of the stage under way (STAGES), and
     messages() the lines it has to tell since the last call (what was read, what the core built and how
@@ -83,7 +82,7 @@ class MeshJob:
     would fault in fresh ones, twice as slow.
     """
 
-    STAGES = ("reading the centerline", "building the surface", "estimating curvature", "filling Blender's mesh")
+    STAGES = ("reading the centerline", "building the surface", "colouring by curvature", "filling Blender's mesh")
 
     def __init__(self, prepare, options, color):
         self._color = color
@@ -96,7 +95,7 @@ class MeshJob:
         self._graph = pool.submit(self._prepare, prepare)
         self._surface = pool.submit(self._mesh, options)
         self._edges = pool.submit(self._list_edges)
-        self._curvature = pool.submit(self._estimate_curvature) if color is not None else None
+        self._curvature = pool.submit(self._color_by_curvature) if color is not None else None
         pool.shutdown(wait=False)
 
     def _say(self, line):
@@ -112,7 +111,9 @@ class MeshJob:
         return graph
 
     def _mesh(self, options):
-        result = core().mesh(self._graph.result(), **options)
+        # The core's curvature: along the tubes it is the round tubes' own (curvature/tube_curvature.hpp),
+        # which a fit to the finished surface alone misses where a tube has 8 vertices round it.
+        result = core().mesh(self._graph.result(), curvature=self._color is not None, **options)
         self._say("surface: " + describe_stats(result["stats"]))
         self._stage = 2 if self._color is not None else 3
         return result
@@ -121,19 +122,18 @@ class MeshJob:
         result = self._surface.result()
         return core().edges(result["faces"], len(result["vertices"]))
 
-    def _estimate_curvature(self):
+    def _color_by_curvature(self):
         result = self._surface.result()
         start = time.perf_counter()
-        values = core().curvature(result["vertices"], result["faces"])
+        curvature = result["curvature"]
+        values = {name: curvature[name] for name in ("k1", "k2", "mean", "gaussian", "rms")}
         # Shape, whatever the size: the mean curvature times the radius of the tubes there (1/2 on a straight vessel).
-        values["shape"] = (values["mean"] * core().local_radius(result["vertices"], self._graph.result())
-                           ).astype(np.float32)
-        seconds = time.perf_counter() - start
+        values["shape"] = (curvature["mean"] * curvature["radius"]).astype(np.float32)
         measure = values[self._color[0]].astype(np.float64)  # as Blender's attribute reads back for a recolour
         coloring = colors.color_by(measure, *self._color[1:])
-        self._say(f"curvature and colours in {time.perf_counter() - start:.2f} s")
+        self._say(f"colours in {time.perf_counter() - start:.2f} s")
         self._stage = 3
-        return values, seconds, coloring
+        return values, coloring
 
     def _futures(self):
         return [f for f in (self._graph, self._surface, self._edges, self._curvature) if f is not None]
@@ -206,14 +206,8 @@ class MeshJob:
     def coloring(self, color):
         """Waits for the colours: what colors.color_by gave, when `color` is what the job was asked to
         colour by (the settings may have changed while it ran); else None."""
-        return None if self._curvature is None or color != self._color else self._curvature.result()[2]
+        return None if self._curvature is None or color != self._color else self._curvature.result()[1]
 
     def stats(self):
-        """The core's statistics of the run, with the curvature stage when there was one."""
-        stats = dict(self._surface.result()["stats"])
-        if self._curvature is not None:
-            seconds = self._curvature.result()[1]
-            stats["stages"] = stats["stages"] + [{"stage": "curvature", "seconds": seconds,
-                                                  "vertices": stats["vertices"], "faces": stats["triangles"]}]
-            stats["seconds"] += seconds
-        return stats
+        """The core's statistics of the run (its curvature stage among them when there was one)."""
+        return dict(self._surface.result()["stats"])

@@ -285,14 +285,20 @@ def test_threshold_zero_is_uniform(project_data):
                                   vm.mesh(graph, levels=2, method="uniform")["faces"])
 
 
-def test_curvature_of_given_arrays_matches_the_mesh_run(project_data):
+def test_curvature_of_given_arrays_is_the_fit_and_the_mesh_run_paints_the_tubes_own(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
     surface = vm.mesh(graph, levels=2, curvature=True)
     again = vm.curvature(surface["vertices"], surface["faces"])
     assert sorted(again) == sorted(set(surface["curvature"]) - {"radius"})  # the surface alone has no tubes
     for name, values in again.items():
         assert values.dtype == np.float32
-        np.testing.assert_array_equal(values, surface["curvature"][name])
+    # The fork's vessels are straight: a tube's mean curvature is 1/(2r). The mesh run blends the tubes' own
+    # curvature in along them (the fit alone speaks only at the joint's squares and the caps).
+    radius = surface["curvature"]["radius"]
+    fit = np.abs(2 * radius * again["mean"] - 1)
+    painted = np.abs(2 * radius * surface["curvature"]["mean"] - 1)
+    assert np.median(painted) < np.median(fit)
+    assert np.count_nonzero(painted != fit) > len(fit) // 2
     with pytest.raises(vm.InputError, match="face 0"):
         vm.curvature(np.zeros((3, 3)), np.array([[0, 1, 5]]))
 

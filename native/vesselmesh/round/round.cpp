@@ -10,7 +10,7 @@ namespace vesselmesh {
 
 GuardedMoves round_tubes(TriMesh& mesh) {
   std::array<const std::vector<float>*, 5> p{};
-  for (std::size_t k = 0; k < kTubeAxisNames.size(); ++k)
+  for (std::size_t k = 0; k < p.size(); ++k)
     for (const VertexProperty& q : mesh.vertex_properties)
       if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
   if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) return {};

@@ -759,14 +759,16 @@ class Tiler {
   /// `axis`, the direction the tube really runs (the polyline's) on a coarse or jagged centerline: each
   /// corner is pushed out to the radius from the axis line rather than from the centre, or the tube
   /// would be too thin by the cosine of the lean (capped at twice the radius, a 60° lean).
-  /// `weight`: 1 for a tube's sections, 0 for a joint patch's squares (TubeAxis).
-  int32_t add_section(const Section& s, const Vec3& axis, double weight) {
+  /// `weight`: 1 for a tube's sections, 0 for a joint patch's squares; `bend` and `slope` the axis's there
+  /// (TubeAxis).
+  int32_t add_section(const Section& s, const Vec3& axis, double weight, const Vec3& bend = Vec3::Zero(),
+                      double slope = 0) {
     const int32_t first = static_cast<int32_t>(mesh_.vertices.size());
     for (int k = 0; k < 4; ++k) {
       const Vec3 offset = s.corner(k, scale()) - s.center;
       const double along = offset.normalized().dot(axis);
       mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
-      mesh_.axes.push_back({s.center - mesh_.vertices.back(), s.radius, weight});
+      mesh_.axes.push_back({s.center - mesh_.vertices.back(), s.radius, weight, axis, bend, slope});
     }
     if (++mesh_.sections > opt_.max_sections)
       throw SizeLimitError("more than " + std::to_string(opt_.max_sections) + " sections");
@@ -940,6 +942,19 @@ class Tiler {
     std::vector<Vec3> axis(m + 1);
     for (std::size_t i = 0; i <= m; ++i)
       axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
+    // The bend of the axis through the centres (the difference of the unit chords either side over half
+    // their length, exact for centres on a circle) and the radius's slope along it, before the centres move
+    // for the limit surface to pass through them: the round stage puts the surface on circles about that
+    // axis, so this is the shape whose curvature the tube has.
+    std::vector<Vec3> bend(m + 1, Vec3::Zero());
+    std::vector<double> slope(m + 1, 0.0);
+    for (std::size_t i = 0; i <= m; ++i) {
+      const std::size_t a = i > 0 ? i - 1 : ring ? m - 1 : 0, b = i < m ? i + 1 : ring ? 1 : m;
+      const Vec3 in = sections[i].center - sections[a].center, out = sections[b].center - sections[i].center;
+      const double l_in = in.norm(), l_out = out.norm();
+      if (l_in + l_out > 0) slope[i] = (sections[b].radius - sections[a].radius) / (l_in + l_out);
+      if (l_in > 0 && l_out > 0) bend[i] = 2 * (out / l_out - in / l_in) / (l_in + l_out);
+    }
     place_for_limit(sections, axis, ring, scale());
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
@@ -959,7 +974,7 @@ class Tiler {
       } else {
         // A terminal's end section, whose corners the flat cap joins, keeps the cap's shape.
         const bool cap = !ring && (i == 0 || i == m);
-        const int32_t first = add_section(sections[i], axis[i], cap ? 0.0 : 1.0);
+        const int32_t first = add_section(sections[i], axis[i], cap ? 0.0 : 1.0, bend[i], slope[i]);
         for (int j = 0; j < 4; ++j) ids[i][j] = first + j;
       }
     }
@@ -1021,9 +1036,15 @@ std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& ax
   std::vector<VertexProperty> out;
   for (const std::string& name : kTubeAxisNames) out.push_back({name, std::vector<float>(axes.size())});
   for (std::size_t v = 0; v < axes.size(); ++v) {
-    for (int k = 0; k < 3; ++k) out[k].values[v] = static_cast<float>(axes[v].offset[k]);
-    out[3].values[v] = static_cast<float>(axes[v].radius);
-    out[4].values[v] = static_cast<float>(axes[v].weight);
+    const TubeAxis& a = axes[v];
+    for (int k = 0; k < 3; ++k) {
+      out[k].values[v] = static_cast<float>(a.offset[k]);
+      out[5 + k].values[v] = static_cast<float>(a.tangent[k]);
+      out[8 + k].values[v] = static_cast<float>(a.bend[k]);
+    }
+    out[3].values[v] = static_cast<float>(a.radius);
+    out[4].values[v] = static_cast<float>(a.weight);
+    out[11].values[v] = static_cast<float>(a.slope);
   }
   return out;
 }

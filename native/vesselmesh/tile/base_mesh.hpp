@@ -36,16 +36,22 @@ struct TileOptions {
 /// Where a base vertex's tube is round: the axis point of its section, the radius the surface should have
 /// there, and how much of the tube it is (1 for the sections of a tube, 0 for a joint patch's squares and a
 /// terminal's end section, where the cap joins), which Loop subdivision blends like positions
-/// (round/round.hpp).
+/// (round/round.hpp). With them, the shape of the axis there, from which the tube's curvature is known
+/// (curvature/tube_curvature.hpp): its direction, its bend and how fast the radius changes along it.
 struct TubeAxis {
   Vec3 offset = Vec3::Zero();  ///< from the vertex to its section's (control) centre
   double radius = 0;
   double weight = 0;
+  Vec3 tangent = Vec3::Zero();  ///< unit direction of the axis through the section centres
+  Vec3 bend = Vec3::Zero();     ///< the axis's curvature vector (1/length, towards the centre of its bend)
+  double slope = 0;             ///< dr/ds, the radius's change per unit of axis
 };
 
-/// The names of the vertex properties that carry TubeAxis through subdivision: offset x, y, z, radius, weight.
-inline const std::array<std::string, 5> kTubeAxisNames = {"tube_axis_x", "tube_axis_y", "tube_axis_z",
-                                                          "tube_radius", "tube_weight"};
+/// The names of the vertex properties that carry TubeAxis through subdivision: offset x, y, z, radius,
+/// weight, then tangent x, y, z, bend x, y, z and slope.
+inline const std::array<std::string, 12> kTubeAxisNames = {
+    "tube_axis_x",  "tube_axis_y",    "tube_axis_z", "tube_radius", "tube_weight", "tube_tangent_x",
+    "tube_tangent_y", "tube_tangent_z", "tube_bend_x", "tube_bend_y", "tube_bend_z", "tube_slope"};
 
 /// The axes as those vertex properties.
 std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& axes);
