@@ -14,6 +14,8 @@ Installs the add-on from the zip into a temporary user profile and writes PNGs:
     guide_methods.png     uniform and curvature-adaptive refinement at level 2, wireframe over solid (Workbench)
     guide_colors.png      Saddles and bulges (k2, diverging map) and mean curvature (sequential map) of
                           bifurcation.swc imported at scale 0.001, each through Teaching Render (Cycles)
+    guide_closeup.png     a fork of brava-bg0003 close up, Saddles and bulges and Shape, each through Teaching
+                          Render (Workbench; skipped when ../shared/data is absent)
 """
 import os
 import sys
@@ -249,10 +251,43 @@ def picture_colors(out):
     side_by_side(parts, out)
 
 
+def picture_closeup(out):
+    """A fork of brava-bg0003 (../shared/data, millimetres) close up: no stripes along the vessels."""
+    path = os.path.join(REPO, "..", "shared", "data", "brava-bg0003", "BG0003_ColorCoded.CNG.swc")
+    if not os.path.exists(path):
+        print(f"skipped {out}: {path} is absent", flush=True)
+        return
+    vm = sys.modules["vesselmesh"].core.native.core()
+    graph = vm.read(path)
+    points, radius = graph["points"] * 0.001, graph["radius"] * 0.001
+    degree = np.bincount(graph["edges"].ravel(), minlength=len(points))
+    forks = np.flatnonzero((degree == 3) & (radius >= np.median(radius)))
+    fork = forks[len(forks) // 2]  # a fork of a mid-sized vessel, the same every time
+    parts = []
+    for measure in ("k2", "shape"):
+        scene = new_scene((640, 400))
+        bpy.ops.import_scene.vesselmesh(filepath=path, scale=0.001, color_measure=measure)
+        bpy.ops.vesselmesh.teaching_render(engine="WORKBENCH", render=False)
+        centre, distance = Vector(points[fork]), 12 * float(radius[fork])
+        camera = scene.camera
+        camera.location = centre + Vector((0.3, -1.0, 0.5)).normalized() * distance
+        camera.rotation_euler = (centre - camera.location).to_track_quat("-Z", "Y").to_euler()
+        camera.data.clip_start = 0.05 * float(radius[fork])
+        # The legend hangs in front of the camera as far as the whole tree was: brought in (and shrunk
+        # alike, so that it looks the same) to a quarter of the close-up's distance, in front of the vessels.
+        for legend in camera.children:
+            shrink = 0.25 * distance / max(abs(legend.location.z), 1e-12)
+            legend.location *= shrink
+            legend.scale *= shrink
+        parts.append(out[:-4] + f"_{measure}.png")
+        render(scene, parts[-1])
+    side_by_side(parts, out)
+
+
 PICTURES = {"guide_teaching": picture_teaching, "guide_import": picture_import,
             "guide_regenerate": picture_regenerate, "guide_radius": picture_radius,
             "guide_smoothing": picture_smoothing, "guide_methods": picture_methods,
-            "guide_colors": picture_colors}
+            "guide_colors": picture_colors, "guide_closeup": picture_closeup}
 
 
 def main():
