@@ -45,7 +45,7 @@ SHARED_FILES = ["brava-bg0003/BG0003_ColorCoded.CNG.swc", "human-brain-arteries/
                 "vascpy-mouse-vessels/test_smaller_vasculature.vtk", "neuron-hemibrain-da1/1734350788.swc",
                 "secomb-rat-cortex-50/network.vtk", "secomb-rat-mesentery/network.vtk", "vesselgraph-demo/vertices.csv"]
 BLENDER_FILES = SHARED_FILES[:2]
-STAGES = ("separate", "tile", "triangulate", "subdivide", "fit", "verify")
+STAGES = ("separate", "tile", "triangulate", "subdivide", "round", "fit", "verify")
 SYNTH_LIMIT = ["--max-triangles", str(10**9)]
 MiB = 1024 * 1024
 
