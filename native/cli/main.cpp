@@ -195,7 +195,8 @@ int main(int argc, char** argv) {
                    "which vertices come onto the input's tubes: all (onto), those outside (inward), none")
       ->transform(CLI::CheckedTransformer(fit_names()));
   mesh->add_flag("--curvature", mesh_options.curvature,
-                 "estimate per-vertex curvature (2-ring fit); PLY gets k1, k2, mean, gaussian, rms and the local "
+                 "per-vertex curvature (the tubes' own along the vessels, a 2-ring fit at joints and caps); PLY gets "
+                 "k1, k2, mean, gaussian, rms and the local "
                  "tube radius");
   mesh->add_option("--radius-array", radius_array, "name of the array or column holding the radius");
   mesh->add_option("--max-triangles", mesh_options.max_triangles,
