@@ -10,11 +10,8 @@
 namespace vesselmesh {
 
 TubeCurvature tube_curvature(const TriMesh& mesh) {
-  std::array<const std::vector<float>*, kTubeAxisNames.size()> p{};
-  for (std::size_t k = 0; k < p.size(); ++k)
-    for (const VertexProperty& q : mesh.vertex_properties)
-      if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
-  if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) return {};
+  const auto p = find_tube_axis_properties(mesh);
+  if (p[0] == nullptr) return {};
   const std::size_t n = mesh.vertices.size();
   TubeCurvature t;
   t.around.assign(n, 0.0);

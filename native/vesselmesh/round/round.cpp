@@ -9,11 +9,8 @@
 namespace vesselmesh {
 
 GuardedMoves round_tubes(TriMesh& mesh) {
-  std::array<const std::vector<float>*, 5> p{};
-  for (std::size_t k = 0; k < p.size(); ++k)
-    for (const VertexProperty& q : mesh.vertex_properties)
-      if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
-  if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) return {};
+  const auto p = find_tube_axis_properties(mesh);
+  if (p[0] == nullptr) return {};
   std::vector<Vec3> move(mesh.vertices.size(), Vec3::Zero());
   std::vector<double> radius(mesh.vertices.size());
   parallel_for(mesh.vertices.size(), [&](std::size_t begin, std::size_t end) {

@@ -356,9 +356,8 @@ std::vector<double> sample_branch(const BranchCurve& curve, double start, double
   if (end <= start) return {start, end};
   // Refused before the work when far beyond the limit (twice: the estimate follows the arc, the steps the
   // chords): near it, each step of a branch 1e10 radii long costs a bisection (8 s to reach 1.5 million).
-  if (sections_between(sp, start, end) > 2.0 * static_cast<double>(options.max_sections))
-    throw SizeLimitError("a branch takes about " +
-                         std::to_string(static_cast<int64_t>(sections_between(sp, start, end))) + " sections");
+  if (const double about = sections_between(sp, start, end); about > 2.0 * static_cast<double>(options.max_sections))
+    throw SizeLimitError("a branch takes about " + std::to_string(static_cast<int64_t>(about)) + " sections");
   std::vector<double> arcs =
       options.method == Sampling::unidirectional
           ? unidirectional(sp, start, end, options.max_sections)

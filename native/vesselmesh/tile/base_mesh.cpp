@@ -1049,6 +1049,15 @@ std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& ax
   return out;
 }
 
+std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(const TriMesh& mesh) {
+  std::array<const std::vector<float>*, kTubeAxisNames.size()> p{};
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (const VertexProperty& q : mesh.vertex_properties)
+      if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
+  if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) p.fill(nullptr);
+  return p;
+}
+
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options) {
   return Tiler(graph, options).run();
 }

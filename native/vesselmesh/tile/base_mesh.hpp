@@ -56,6 +56,10 @@ inline const std::array<std::string, 12> kTubeAxisNames = {
 /// The axes as those vertex properties.
 std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& axes);
 
+/// A mesh's tube properties, in kTubeAxisNames' order (what round/ and curvature/ read); all null unless
+/// it has every one.
+std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(const TriMesh& mesh);
+
 struct BaseMesh {
   std::vector<Vec3> vertices;
   std::vector<TubeAxis> axes;                 ///< one per vertex
