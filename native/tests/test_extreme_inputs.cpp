@@ -60,6 +60,14 @@ Meshed mesh_in_process(const std::string& file) {
   return m;
 }
 
+/// The file meshes, on the command line and in process, to a surface its own check accepts.
+Meshed mesh_accepted(const std::string& file) {
+  expect_accepted_surface(mesh(file), file);
+  Meshed m = mesh_in_process(file);
+  EXPECT_EQ(m.result.verification.problem(), "") << file;
+  return m;
+}
+
 /// Lowest and highest corner of the surface's bounding box.
 std::pair<vesselmesh::Vec3, vesselmesh::Vec3> bounds(const vesselmesh::TriMesh& mesh) {
   vesselmesh::Vec3 lo = mesh.vertices.at(0), hi = lo;
@@ -216,9 +224,7 @@ TEST(ExtremeInputs, PipelineChecksItsOwnSurface) {
 // and the joint's patch takes them in as stubs to their ends.
 TEST(ExtremeInputs, BranchesOverlappingAllAlongFromOneJointCloseIntoOneSurfaceToTheirEnds) {
   const std::string file = extreme("side_by_side_1e4_radii.vtk");
-  expect_accepted_surface(mesh(file), file);
-  const Meshed m = mesh_in_process(file);
-  EXPECT_EQ(m.result.verification.problem(), "");
+  const Meshed m = mesh_accepted(file);
   const auto [lo, hi] = bounds(m.result.mesh);
   // Within a quarter radius of the terminals: subdivision rounds a flat cap's rim in.
   const double r = m.graph.radius[0];
@@ -231,9 +237,7 @@ TEST(ExtremeInputs, BranchesOverlappingAllAlongFromOneJointCloseIntoOneSurfaceTo
 // square at the short branch's end.
 TEST(ExtremeInputs, JointThatSwallowsAllItsBranchesIsCoveredToItsRadius) {
   const std::string file = extreme("joint_wider_than_its_loop.vtk");
-  expect_accepted_surface(mesh(file), file);
-  const Meshed m = mesh_in_process(file);
-  EXPECT_EQ(m.result.verification.problem(), "");
+  const Meshed m = mesh_accepted(file);
   const auto [lo, hi] = bounds(m.result.mesh);
   const vesselmesh::Vec3 joint(-6, -4, -6);
   const int32_t j = static_cast<int32_t>(
@@ -276,9 +280,7 @@ TEST(ExtremeInputs, LoopWhoseSquaresStandAtItsBendsGivesAManifoldSurface) {
 // clears the patch.
 TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
   const std::string file = extreme("fat_loop_round_a_thin_branch.vtk");
-  expect_accepted_surface(mesh(file), file);
-  const Meshed m = mesh_in_process(file);
-  EXPECT_EQ(m.result.verification.problem(), "");
+  const Meshed m = mesh_accepted(file);
   const auto [lo, hi] = bounds(m.result.mesh);
   // The thin branch's terminal (4, 4, −3), radius 1, within a quarter radius (a flat cap's rim rounds in).
   EXPECT_GE(hi.x(), 4 - 0.25);
@@ -294,9 +296,7 @@ TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
 // (a stub), and the surface closes, the corner in it.
 TEST(ExtremeInputs, HairpinWhoseLegsRunOnSideBySideClosesRoundItsCorner) {
   const std::string file = extreme("hairpin_legs_side_by_side.vtk");
-  expect_accepted_surface(mesh(file), file);
-  const Meshed m = mesh_in_process(file);
-  EXPECT_EQ(m.result.verification.problem(), "");
+  const Meshed m = mesh_accepted(file);
   const auto [lo, hi] = bounds(m.result.mesh);
   EXPECT_GE(hi.y(), 1000 - 0.25 * 0.25);  // the corner (−6, 1000, 1.25), radius 0.25
 }

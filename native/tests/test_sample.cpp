@@ -33,6 +33,14 @@ CenterlineData gentle_tracing(int points, double spacing, double turn, double sc
   return d;
 }
 
+/// The uniform level-2 surface of a tracing of `points` points 25 radii apart turning `turn` degrees each:
+/// its sections, and its fidelity to the tracing's cones.
+std::pair<int64_t, FidelityReport> traced_surface(int points, double turn, double scale) {
+  const CenterlineData d = gentle_tracing(points, 25, turn, scale);
+  const MeshResult r = uniform_level_two(d);
+  return {r.sections, radius_fidelity(r.mesh, build_graph(d))};
+}
+
 }  // namespace
 
 // Eq. 1 alone places a section every diameter on a straight cone, which the round stage makes exact
@@ -60,10 +68,8 @@ TEST(Sample, StraightConeTakesFewSectionsAndStaysOnItsTube) {
 TEST(Sample, GentlyCurvingTracingWithPointsTwentyFiveRadiiApartTakesNoMoreSectionsThanPoints) {
   const int points = 80;
   for (double scale : kScales) {
-    const CenterlineData d = gentle_tracing(points, 25, 0.1, scale);
-    const MeshResult r = uniform_level_two(d);
-    EXPECT_LE(r.sections, points) << "scale " << scale;
-    const FidelityReport f = radius_fidelity(r.mesh, build_graph(d));
+    const auto [sections, f] = traced_surface(points, 0.1, scale);
+    EXPECT_LE(sections, points) << "scale " << scale;
     EXPECT_LT(f.abs_relative_error.p95, 0.02) << "scale " << scale;
     EXPECT_LT(f.centroid_error.p95, 0.03) << "scale " << scale;
   }
@@ -74,10 +80,8 @@ TEST(Sample, GentlyCurvingTracingWithPointsTwentyFiveRadiiApartTakesNoMoreSectio
 TEST(Sample, TracingTurningMoreTakesMoreSectionsAndStaysOnItsTubes) {
   const int points = 12;
   for (double scale : kScales) {
-    const CenterlineData d = gentle_tracing(points, 25, 1, scale);
-    const MeshResult r = uniform_level_two(d);
-    EXPECT_GT(r.sections, points) << "scale " << scale;
-    const FidelityReport f = radius_fidelity(r.mesh, build_graph(d));
+    const auto [sections, f] = traced_surface(points, 1, scale);
+    EXPECT_GT(sections, points) << "scale " << scale;
     EXPECT_LT(f.abs_relative_error.p95, 0.03) << "scale " << scale;
     EXPECT_LT(f.centroid_error.p95, 0.03) << "scale " << scale;
   }
