@@ -100,6 +100,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     result.separated_points = separation.moved_points;
     result.largest_separation = separation.largest_move;
     result.crossings_left = separation.left;
+    result.tangle = separation.tangle;
     if (separation.moved_points > 0) centerline = &separation.graph, cones.emplace(separation.graph);
     record("separate", start, static_cast<int64_t>(graph.points.size()),
            static_cast<int64_t>(graph.edges.size()));
@@ -186,6 +187,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["separated_points"] = result.separated_points;
   j["largest_separation"] = result.largest_separation;
   j["crossings_left"] = result.crossings_left;
+  j["tangle"] = result.tangle;
   j["rounded_vertices"] = result.rounded_vertices;
   j["fitted_vertices"] = result.fitted_vertices;
   j["parted_vertices"] = result.parted_vertices;

@@ -70,6 +70,7 @@ struct MeshResult {
   int64_t separated_points = 0;   ///< centerline points the separate stage moved
   double largest_separation = 0;  ///< its largest move, relative to the point's radius
   int64_t crossings_left = 0;     ///< crossing edge pairs it left
+  bool tangle = false;            ///< it left them all: too dense to part (Separation::tangle)
   int64_t rounded_vertices = 0;   ///< vertices the round stage moved onto their tube's circle
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube

@@ -21,6 +21,9 @@ namespace {
 constexpr double kGap = 0.2;  // separated tubes lie this fraction of the sum of their radii apart
 constexpr int kRounds = 8;
 constexpr double kStep = 0.25;  // points added along a crossing edge lie this fraction of the radii apart
+// Overlapping edge pairs per edge beyond which the vessels form a tangle: 42 to 180 in the tangles the fuzz
+// target found (native/fuzz/findings/pipeline/separate-*), at most 7.2 in the shared sets and brava-records.
+constexpr std::size_t kTangle = 32;
 
 // Centerline path lengths between edges, from searches kept per point: crossing_edges asks for every
 // pair of overlapping edges, and where the tubes of a star all overlap round its joint (and the
@@ -228,9 +231,11 @@ CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const Ro
 
 }  // namespace
 
-std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
-                                                   double gap) {
-  const std::vector<std::array<int32_t, 2>> overlapping = cones.overlapping_edges(gap);
+namespace {
+
+// crossing_edges of the overlapping pairs `overlapping` (RoundCones::overlapping_edges).
+std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, const RoundCones& cones,
+                                                   const std::vector<std::array<int32_t, 2>>& overlapping) {
   if (overlapping.empty()) return {};
   JointOverlaps joint_overlaps(g, cones);
   std::map<std::array<int32_t, 3>, double> extent;  // joint_overlaps.extent(a, b, j), once each
@@ -260,6 +265,13 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
     if (!from_joint) out.push_back({e, f});
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
+                                                   double gap) {
+  return crossing_among(g, cones, cones.overlapping_edges(gap));
 }
 
 // The pairs of edges to move apart, of `near` (crossing_edges within kGap): those that cross (the pairs
@@ -305,7 +317,17 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
       const int32_t a = cones.cone(ef[0]).branch, b = cones.cone(ef[1]).branch;
       return std::array<int32_t, 2>{std::min(a, b), std::max(a, b)};
     };
-    const std::vector<std::array<int32_t, 2>> near = crossing_edges(h, cones, kGap);
+    const std::vector<std::array<int32_t, 2>> overlapping = cones.overlapping_edges(kGap);
+    // A tangle, so many vessels through one place that each piece of tube overlaps dozens of others (on
+    // the points added every quarter radius), cannot be parted, and the searches would take seconds:
+    // the input is left as it is.
+    if (overlapping.size() > kTangle * h.edges.size()) {
+      out.graph = g;
+      out.left = out.crossings;
+      out.tangle = true;
+      return out;
+    }
+    const std::vector<std::array<int32_t, 2>> near = crossing_among(h, cones, overlapping);
     const std::vector<std::array<int32_t, 2>> pairs = to_separate(h, cones, near);
     out.left = static_cast<int64_t>(pairs.size());
     for (const auto& ef : pairs) separating.insert(branches(ef));

@@ -37,6 +37,8 @@ struct Separation {
   int64_t moved_points = 0;  ///< points moved
   double largest_move = 0;   ///< the largest move, relative to the moved point's radius
   int64_t left = 0;          ///< such pairs left when the rounds ran out (0 but in a tangle)
+  bool tangle = false;       ///< the vessels were too dense to part (every piece of tube overlapping dozens
+                             ///< of others), and were left as they were
 };
 
 /// Moves the crossing vessels of `g` (whose round cones `cones` holds) apart, and those passing within the
@@ -47,7 +49,9 @@ struct Separation {
 /// each by the same share of its own radius, until they lie about a fifth of the sum of their radii apart;
 /// each move fades along its branch as a cosine over kJointReach times the sum of the radii either side. A
 /// point asked to move by several pairs in one round takes the largest move; joints stay where they are
-/// (their patches with them). The topology and the radii are kept; a graph without crossings comes back
+/// (their patches with them). Vessels too dense to part (after the points are added, each edge's tube
+/// overlapping dozens of others on average: a tangle) are left as they are, with `tangle` set. The
+/// topology and the radii are kept; a graph without crossings comes back
 /// as it is.
 Separation separate_crossings(const CenterlineGraph& g, const RoundCones& cones);
 
