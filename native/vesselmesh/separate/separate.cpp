@@ -24,6 +24,7 @@ constexpr double kStep = 0.25;  // points added along a crossing edge lie this f
 // Overlapping edge pairs per edge beyond which the vessels form a tangle: 42 to 180 in the tangles the fuzz
 // target found (native/fuzz/findings/pipeline/separate-*), at most 7.2 in the shared sets and brava-records.
 constexpr std::size_t kTangle = 32;
+constexpr double kSmoothing = 2;  // each round's moves are smoothed along a branch over a Gaussian of σ this many radii
 
 // Centerline path lengths between edges, from searches kept per point: crossing_edges asks for every
 // pair of overlapping edges, and where the tubes of a star all overlap round its joint (and the
@@ -267,6 +268,39 @@ std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, con
   return out;
 }
 
+// Each point's move averaged with its branch's neighbours' over a Gaussian of arc length (σ kSmoothing
+// radii; joints stay). Where several pairs ask neighbouring points to move, each takes the largest move
+// asked of it, and points a fortieth of a radius apart could move a radius apart, in different
+// directions: the axis zigzagged, and the tiling made a corner patch of it (brava-records BH0009).
+// A move's own fade is several radii long, and keeps its shape (docs/pipeline.md: the widths tried).
+void smooth_along_branches(const CenterlineGraph& h, const RoundCones& cones, std::vector<Vec3>& move) {
+  std::vector<Vec3> smoothed = move;
+  for (std::size_t b = 0; b < h.branches.size(); ++b) {
+    const std::vector<int32_t>& points = h.branches[b].points;
+    const auto bi = static_cast<int32_t>(b);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (h.degree(points[i]) > 2) continue;
+      const double at = cones.arc_at_point(bi, static_cast<int32_t>(i));
+      const double sigma = kSmoothing * h.radius[points[i]];
+      Vec3 sum = Vec3::Zero();
+      double weights = 0;
+      auto add = [&](std::size_t j) {
+        const double d = cones.arc_at_point(bi, static_cast<int32_t>(j)) - at;
+        if (std::abs(d) > 3 * sigma) return false;
+        const double w = std::exp(-0.5 * d * d / (sigma * sigma));
+        sum += w * move[points[j]], weights += w;
+        return true;
+      };
+      for (std::size_t j = i; j < points.size() && add(j); ++j) {
+      }
+      for (std::size_t j = i; j-- > 0 && add(j);) {
+      }
+      smoothed[points[i]] = sum / weights;
+    }
+  }
+  move = std::move(smoothed);
+}
+
 }  // namespace
 
 std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
@@ -383,6 +417,7 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
       push(e, s, share_e * short_by * away, kJointReach * (re + rf));
       push(f, t, -(1 - share_e) * short_by * away, kJointReach * (re + rf));
     }
+    smooth_along_branches(h, cones, move);
     for (std::size_t p = 0; p < h.points.size(); ++p) h.points[p] += move[p];
   }
   for (std::size_t p = 0; p < h.points.size(); ++p)
