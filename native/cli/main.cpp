@@ -251,6 +251,10 @@ int main(int argc, char** argv) {
       if (v.problem().empty() && v.topology.genus != v.loops)
         std::cerr << "note: the centerline has " << v.loops << " loops and the surface genus "
                   << v.topology.genus << " (docs/pipeline.md, tile: where a loop closes)\n";
+      if (result.tangle)
+        std::cerr << "note: " << result.crossings
+                  << " pairs of crossing vessels lie in a tangle too dense to part, and were left as they are "
+                     "(docs/pipeline.md, separate)\n";
       if (!stats_file.empty()) {
         std::ofstream out(stats_file);
         out << stats_json(result) << "\n";

@@ -309,6 +309,8 @@ TEST(ExtremeInputs, ATangleTooDenseToPartIsLeftAsItIsAndStillMeshed) {
   const std::string file = vesselmesh::test::test_data("extreme/tangle_of_fat_vessels.vtk");
   const Meshed m = mesh_accepted(file);
   EXPECT_TRUE(m.result.tangle);
+  const CliRun run = mesh(file);
+  EXPECT_TRUE(contains(run.output, "104 pairs of crossing vessels lie in a tangle too dense to part")) << run.output;
   EXPECT_GT(m.result.crossings, 0);
   EXPECT_EQ(m.result.crossings_left, m.result.crossings);
   EXPECT_EQ(m.result.separated_points, 0);
