@@ -24,7 +24,8 @@ constexpr double kStep = 0.25;  // points added along a crossing edge lie this f
 // Overlapping edge pairs per edge beyond which the vessels form a tangle: 42 to 180 in the tangles the fuzz
 // target found (native/fuzz/findings/pipeline/separate-*), at most 7.2 in the shared sets and brava-records.
 constexpr std::size_t kTangle = 32;
-constexpr double kSmoothing = 2;  // each round's moves are smoothed along a branch over a Gaussian of σ this many radii
+// Each round's moves are smoothed along their branch over a Gaussian of arc length, σ this many radii.
+constexpr double kSmoothing = 2;
 
 // Centerline path lengths between edges, from searches kept per point: crossing_edges asks for every
 // pair of overlapping edges, and where the tubes of a star all overlap round its joint (and the
@@ -229,10 +230,6 @@ CenterlineGraph with_points_where_edges_cross(const CenterlineGraph& g, const Ro
   refined.report = g.report;
   return refined;
 }
-
-}  // namespace
-
-namespace {
 
 // crossing_edges of the overlapping pairs `overlapping` (RoundCones::overlapping_edges).
 std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, const RoundCones& cones,

@@ -49,11 +49,11 @@ struct Separation {
 /// each by the same share of its own radius, until they lie about a fifth of the sum of their radii apart;
 /// each move fades along its branch as a cosine over kJointReach times the sum of the radii either side. A
 /// point asked to move by several pairs in one round takes the largest move, and then each round's moves
-/// are averaged along their branch over a Gaussian of arc length, σ two radii, so that the axis
-/// does not zigzag; joints stay where they are (their patches with them). Vessels too dense to part (after the points are added, each edge's tube
-/// overlapping dozens of others on average: a tangle) are left as they are, with `tangle` set. The
-/// topology and the radii are kept; a graph without crossings comes back
-/// as it is.
+/// are averaged along their branch over a Gaussian of arc length, σ two radii, so that the axis does not
+/// zigzag; joints stay where they are (their patches with them). Vessels too dense to part (after the
+/// points are added, each edge's tube overlapping dozens of others on average: a tangle) are left as they
+/// are, with `tangle` set. The topology and the radii are kept; a graph without crossings comes back as it
+/// is.
 Separation separate_crossings(const CenterlineGraph& g, const RoundCones& cones);
 
 }  // namespace vesselmesh
