@@ -26,16 +26,16 @@ def test_every_setting_has_a_plain_label_and_a_tooltip_that_says_what_it_changes
 
 
 @pytest.mark.parametrize("preset, expected", [
-    ("quick", {"levels": 1, "curvature": True}),
-    ("teaching", {"levels": 2, "color_measure": "k2", "curvature": True}),
+    ("quick", {"levels": 0, "curvature": True}),
+    ("teaching", {"levels": 1, "color_measure": "k2", "curvature": True}),
     ("print", {"method": "uniform", "curvature": False, "caps": "flat", "crossings": "separate"})])
 def test_shipped_presets_fill_in_the_import_and_a_script_can_still_change_one_setting(project_data, preset, expected):
     centerline, surface = import_file(project_data / "bifurcation.swc", preset=preset)
     settings = centerline.vesselmesh.settings
     assert {key: getattr(settings, key) for key in expected} == expected
     assert bool(surface.vesselmesh.color_map) == expected["curvature"]
-    centerline, _ = import_file(project_data / "bifurcation.swc", preset=preset, levels=0)
-    assert centerline.vesselmesh.settings.levels == 0
+    centerline, _ = import_file(project_data / "bifurcation.swc", preset=preset, levels=2)
+    assert centerline.vesselmesh.settings.levels == 2
 
 
 def test_a_preset_applies_to_the_active_centerline_for_the_next_regeneration(project_data):

@@ -185,6 +185,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   mesh->add_option("--max-step", mesh_options.sampling.max_step, "the longest such piece, in radii")
       ->check(CLI::Range(2.0, std::numeric_limits<double>::max()));
+  mesh->add_option("--sides", mesh_options.sides, "sides round every base section: 4 or 8")
+      ->check(CLI::IsMember({4, 8}));
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
       ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");

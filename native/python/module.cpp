@@ -263,8 +263,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       [](const CenterlineGraph& graph, int levels, const std::string& sampling, double alpha, double beta,
          double tolerance, double max_step, const std::string& caps, bool curvature, const std::string& method, int uniform_levels,
          double threshold, const std::string& measure, double angle, const std::string& crossings,
-         const std::string& fit, int64_t max_triangles, const std::string& verify) {
+         const std::string& fit, int64_t max_triangles, const std::string& verify, int sides) {
         MeshOptions o;
+        o.sides = sides;
         o.max_triangles = max_triangles;
         o.verify = choice("verify", verify, verify_names());
         o.crossings = choice("crossings", crossings, crossings_names());
@@ -296,13 +297,13 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         out["transition"] = to_array(r.transition.data(), {static_cast<py::ssize_t>(r.transition.size())});
         return out;
       },
-      py::arg("graph"), py::kw_only(), py::arg("levels") = 2, py::arg("sampling") = "bidirectional",
+      py::arg("graph"), py::kw_only(), py::arg("levels") = MeshOptions().subdivision.levels, py::arg("sampling") = "bidirectional",
       py::arg("alpha") = 1.0, py::arg("beta") = 4.0, py::arg("tolerance") = SamplingOptions().tolerance,
       py::arg("max_step") = SamplingOptions().max_step, py::arg("caps") = "flat", py::arg("curvature") = false,
       py::arg("method") = "curvature", py::arg("uniform_levels") = 1, py::arg("threshold") = 0.7,
       py::arg("measure") = "tube-departure", py::arg("angle") = 160.0, py::arg("crossings") = "separate",
       py::arg("fit") = "onto", py::arg("max_triangles") = MeshOptions().max_triangles,
-      py::arg("verify") = "auto",
+      py::arg("verify") = "auto", py::arg("sides") = MeshOptions().sides,
       "The vessel surface of a graph: dict with vertices (V,3) float64, faces (F,3) int32 "
       "(counter-clockwise\n"
       "from outside), transition (F,) uint8 (1 for crack-closing triangles of adaptive subdivision), stats\n"
@@ -316,7 +317,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.\n"
       "tolerance: sections further apart than alpha's where a straight piece of tube stays within this\n"
       "fraction of the local radius of the centerline (0: alpha's spacing alone), in pieces of up to\n"
-      "max_step radii.\n"
+      "max_step radii. sides: round every base section, 4 or 8.\n"
       "Raises SizeLimitError (a RuntimeError), before the work, for a surface over max_triangles, and\n"
       "ValueError for options out of range. stats['verified'] is the surface's own check ('auto': closed\n"
       "manifold, and crossings up to a million triangles; 'full'; 'topology'): its 'problem' is empty when\n"

@@ -26,7 +26,7 @@ namespace {
 /// The triangulated base mesh the pipeline subdivides.
 TriMesh base_mesh(const CenterlineData& centerline) {
   TileOptions options;
-  options.radius_scale = subdivision_radius_scale();
+  options.radius_scale = subdivision_radius_scale(4);
   return triangulate(tile_base_mesh(build_graph(centerline), options));
 }
 
@@ -225,6 +225,7 @@ TEST_P(SharedSurfaceTree, LevelTwoCurvatureKeepsAtMostSixtyFivePercentOnTheUnifo
   SHARED_DATA_OR_SKIP(path, GetParam());
   const CenterlineGraph g = build_graph(read_centerline(path));
   MeshOptions o;
+  o.subdivision.levels = 2;
   o.subdivision.method = Refinement::uniform;
   const TriMesh uniform = mesh_centerline(g, o).mesh;
   o.subdivision.method = Refinement::curvature;

@@ -199,7 +199,7 @@ TEST(Curvature, VesselTubeAwayFromItsCapsHasMeanHalfItsSectionCurvatureAndZeroGa
         const int64_t z = std::llround(m.vertices[i].z() / radius * 1e6);
         if (z >= 10'000'000 && z <= 30'000'000) rings[z].push_back(i);
       }
-      const size_t around = size_t{4} << levels;
+      const size_t around = static_cast<size_t>(MeshOptions().sides) << levels;
       double mean_error = 0, gaussian_error = 0, mean_sum = 0;
       size_t checked = 0;
       for (auto& [height, ring] : rings) {

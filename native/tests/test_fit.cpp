@@ -20,6 +20,10 @@ namespace {
 /// The uniform level-2 surface before the fit.
 TriMesh limit_surface(const CenterlineGraph& g) {
   MeshOptions o;
+  // Square sections at level 2: their Loop surface webs a crotch furthest and has the most vertices on each
+  // stretch to count; what the fit does to a vertex does not depend on how the surface was tiled.
+  o.sides = 4;
+  o.subdivision.levels = 2;
   o.subdivision.method = Refinement::uniform;
   o.crossings = Crossings::keep;  // the fit's own parting of crossing tubes is what some tests look at
   o.fit = Fit::none;

@@ -87,7 +87,7 @@ TEST_P(JointKind, SurfaceHasNoSelfIntersections) {
   }
 }
 
-TEST_P(JointKind, OpenCapsLeaveOneSquareHolePerTerminal) {
+TEST_P(JointKind, OpenCapsLeaveOneOctagonalHolePerTerminal) {
   const CenterlineGraph g = build_graph(GetParam().make(1.0));
   const MeshResult r = mesh_at(g, 0, Caps::open);
   const TopologyReport t = check_topology(r.mesh);
@@ -95,9 +95,9 @@ TEST_P(JointKind, OpenCapsLeaveOneSquareHolePerTerminal) {
   EXPECT_EQ(t.inconsistent_edges, 0);
   // A terminal branch too short for a tube ends inside its joint's patch, and may leave no hole.
   if (r.absorbed_branches == 0)
-    EXPECT_EQ(t.boundary_edges, 4 * g.terminals()) << GetParam().name;
+    EXPECT_EQ(t.boundary_edges, 8 * g.terminals()) << GetParam().name;
   else
-    EXPECT_TRUE(t.boundary_edges % 4 == 0 && t.boundary_edges <= 4 * g.terminals()) << GetParam().name;
+    EXPECT_TRUE(t.boundary_edges % 8 == 0 && t.boundary_edges <= 8 * g.terminals()) << GetParam().name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, JointKind, testing::ValuesIn(fixtures::joint_kinds()),
@@ -287,6 +287,7 @@ TEST(Pipeline, SeveralComponentsGiveOneSurfaceEach) {
 TEST(Pipeline, StatsCountEveryStage) {
   const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
   MeshOptions o;
+  o.subdivision.levels = 2;
   o.subdivision.method = Refinement::uniform;
   o.curvature = true;
   const MeshResult r = mesh_centerline(g, o);
@@ -399,7 +400,7 @@ class SharedCohort : public testing::TestWithParam<std::string> {};
 TEST_P(SharedCohort, SurfaceIsAnUncrossedClosedManifoldWithOneComponent) {
   SHARED_DATA_OR_SKIP(path, "brava-records/" + GetParam());
   const CenterlineGraph g = build_graph(read_centerline(path));
-  const MeshResult r = mesh_at(g, 2);
+  const MeshResult r = mesh_centerline(g, MeshOptions());
   const TopologyReport t = check_topology(r.mesh);
   EXPECT_TRUE(t.closed_manifold());
   EXPECT_EQ(t.components, g.components);

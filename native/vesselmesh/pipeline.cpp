@@ -11,19 +11,22 @@
 #include "vesselmesh/curvature/tube_curvature.hpp"
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/round/round.hpp"
+#include "vesselmesh/tile/octagons.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
 
-double subdivision_radius_scale() {
-  // Mean distance from the axis of the Loop limit surface of a straight four-sided tube, relative to
-  // its control square's corners (test_loop: SquareTubeShrinksToTheKnownMeanRadius).
-  return 1.0 / 0.657;
+double subdivision_radius_scale(int sides) {
+  // Mean distance from the axis of the Loop limit surface of a straight tube, relative to its control
+  // section's corners (test_loop: TubesShrinkToTheKnownMeanRadius).
+  return 1.0 / (sides == 8 ? 0.902 : 0.657);
 }
 
 void validate(const MeshOptions& options) {
   validate(options.sampling);
   validate(options.subdivision);
+  if (options.sides != 4 && options.sides != 8)
+    throw std::invalid_argument("sides must be 4 or 8, not " + std::to_string(options.sides));
   if (options.max_triangles < 1)
     throw std::invalid_argument("max_triangles must be at least 1, not " +
                                 std::to_string(options.max_triangles));
@@ -110,15 +113,18 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   TileOptions tile;
   tile.sampling = options.sampling;
   tile.caps = options.caps;
-  tile.radius_scale = subdivision_radius_scale();
-  // Every section brings at least four quads, eight triangles, and each level four times as many.
+  tile.radius_scale = subdivision_radius_scale(4);  // octagons are tiled as squares (tile/octagons.hpp)
+  // Every section brings at least two triangles a side, and each level four times as many.
   const int64_t per_base_triangle = int64_t{1} << (2 * options.subdivision.levels);
-  tile.max_sections = std::max<int64_t>(2, options.max_triangles / (8 * per_base_triangle));
+  const int64_t per_section = 2 * options.sides * per_base_triangle;
+  tile.max_sections = std::max<int64_t>(2, options.max_triangles / per_section);
   BaseMesh base;
   try {
     base = tile_base_mesh(*centerline, tile);
+    if (options.sides == 8)
+      base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
   } catch (const SizeLimitError&) {
-    throw too_large(8 * per_base_triangle * tile.max_sections, true, tile.max_sections, options);
+    throw too_large(per_section * tile.max_sections, true, tile.max_sections, options);
   }
   const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
   if (base_triangles * per_base_triangle > options.max_triangles)

@@ -29,6 +29,7 @@ struct MeshOptions {
   Crossings crossings = Crossings::separate;
   SamplingOptions sampling;
   Caps caps = Caps::flat;
+  int sides = 8;  ///< round every base section: 8, or 4 (TileOptions::sides)
   SubdivisionOptions subdivision;
   Fit fit = Fit::onto;     ///< which vertices come onto the input's tubes (fit/fit.hpp)
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms and the local tube radius as vertex properties
@@ -77,10 +78,10 @@ struct MeshResult {
   Verification verification;
 };
 
-/// Square corners sit at this multiple of the radius so that the subdivided surface, whose vertices
-/// are finally moved to the Loop limit surface, is at the centerline radius: Loop pulls a four-sided
-/// tube towards its axis (test_pipeline: RadiusScaleMakesSubdividedTubesFaithful).
-double subdivision_radius_scale();
+/// Section corners sit at this multiple of the radius so that the subdivided surface, whose vertices
+/// are finally moved to the Loop limit surface, is at the centerline radius: Loop pulls a tube of
+/// `sides` (4 or 8) sides towards its axis (test_pipeline: RadiusScaleMakesSubdividedTubesFaithful).
+double subdivision_radius_scale(int sides);
 
 /// Throws std::invalid_argument for options validate() rejects, SizeLimitError (error.hpp) when the
 /// surface would exceed options.max_triangles, and std::invalid_argument for a graph without edges.

@@ -41,8 +41,8 @@ class MeshSettings:
     """The meshing and colour settings, shared by the import operator and the centerline objects."""
 
     levels: IntProperty(
-        name="Smoothness", default=2, min=0, max=4,
-        description="How many times the surface is refined (Loop subdivision levels): 0 is faceted, 2 is smooth "
+        name="Smoothness", default=1, min=0, max=4,
+        description="How many times the surface is refined (Loop subdivision levels): 0 is faceted, 1 is smooth "
                     "in a picture, each step up has up to 4 times the triangles")
     method: EnumProperty(
         name="Refine", default="curvature",

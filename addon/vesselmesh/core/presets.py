@@ -7,16 +7,16 @@ Preset = namedtuple("Preset", "label description values")
 PRESETS = {
     "quick": Preset(
         "Quick Preview", "A coarser surface in a fraction of the time: check the shape and the colours first",
-        {"levels": 1, "method": "curvature", "uniform_levels": 1, "curvature": True, "smooth": 0}),
+        {"levels": 0, "method": "curvature", "uniform_levels": 1, "curvature": True, "smooth": 0}),
     "teaching": Preset(
         "Teaching Render", "A smooth surface coloured where it bends, branches, narrows or bulges: for lecture "
                            "pictures with Teaching Render",
-        {"levels": 2, "method": "curvature", "uniform_levels": 1, "fit": "onto", "crossings": "separate",
+        {"levels": 1, "method": "curvature", "uniform_levels": 1, "fit": "onto", "crossings": "separate",
          "curvature": True, "color_measure": "k2", "colormap": "auto", "percentile": 2.0}),
     "print": Preset(
         "3D Print", "A closed surface that follows the radii and never crosses itself, evenly refined and "
                     "without colours: for STL or PLY files to print",
-        {"levels": 2, "method": "uniform", "caps": "flat", "fit": "onto", "crossings": "separate",
+        {"levels": 1, "method": "uniform", "caps": "flat", "fit": "onto", "crossings": "separate",
          "curvature": False}),
 }
 

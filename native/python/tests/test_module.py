@@ -107,8 +107,8 @@ def test_straight_vessel_takes_fewer_sections_unless_the_tolerance_is_zero():
 
 def test_mesh_over_the_triangle_limit_stops_before_the_work_saying_what_to_change(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
-    with pytest.raises(vm.SizeLimitError, match="beyond the limit of 1000: use fewer levels"):
-        vm.mesh(graph, max_triangles=1000)
+    with pytest.raises(vm.SizeLimitError, match="beyond the limit of 500: use fewer levels"):
+        vm.mesh(graph, max_triangles=500)
     assert issubclass(vm.SizeLimitError, RuntimeError)
 
 

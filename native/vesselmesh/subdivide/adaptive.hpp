@@ -32,9 +32,9 @@ enum class Refinement {
 };
 
 struct SubdivisionOptions {
-  int levels = 2;          ///< 0..4
+  int levels = 1;          ///< 0..4 (one level on the pipeline's octagons rounds tubes to 16 sides)
   Refinement method = Refinement::curvature;
-  int uniform_levels = 1;  ///< the first levels split everything: the square-section base mesh is too coarse
+  int uniform_levels = 1;  ///< the first levels split everything: a base mesh's octagons are too coarse
                            ///< for its curvature to say where detail is (paper §2.5 step 1)
   CurvatureMeasure measure = CurvatureMeasure::tube_departure;  ///< ranks vessels of every size alike
   double threshold = 0.7;        ///< curvature: in [0, 1], on the scaled and equalised measure

@@ -137,6 +137,7 @@ class Tiler {
       find_patches();
       mesh_.vertices.clear();
       mesh_.axes.clear();
+      mesh_.squares.clear();
       mesh_.triangles.clear();
       mesh_.sections = mesh_.joints = 0;
       std::fill(shared_vertex_.begin(), shared_vertex_.end(), -1);
@@ -770,6 +771,7 @@ class Tiler {
       mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
       mesh_.axes.push_back({s.center - mesh_.vertices.back(), s.radius, weight, axis, bend, slope});
     }
+    mesh_.squares.push_back({first, first + 1, first + 2, first + 3});
     if (++mesh_.sections > opt_.max_sections)
       throw SizeLimitError("more than " + std::to_string(opt_.max_sections) + " sections");
     return first;
@@ -1027,6 +1029,12 @@ class Tiler {
       for (int32_t& v : q) v = new_id[v];
     for (Tri& t : mesh_.triangles)
       for (int32_t& v : t) v = new_id[v];
+    // A stub's square inside the hull is gone with its corners.
+    for (Quad& q : mesh_.squares)
+      for (int32_t& v : q) v = new_id[v];
+    mesh_.squares.erase(std::remove_if(mesh_.squares.begin(), mesh_.squares.end(),
+                                       [](const Quad& q) { return std::find(q.begin(), q.end(), -1) != q.end(); }),
+                        mesh_.squares.end());
   }
 };
 

@@ -65,6 +65,7 @@ struct BaseMesh {
   std::vector<TubeAxis> axes;                 ///< one per vertex
   std::vector<std::array<int32_t, 4>> quads;  ///< tube pieces and caps, counter-clockwise from outside
   std::vector<Tri> triangles;                 ///< joint patches
+  std::vector<std::array<int32_t, 4>> squares;  ///< every section's corners, counter-clockwise about it
   int64_t sections = 0;                       ///< cross-sections, joint squares included
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
