@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/subdivide/loop.hpp"
 
 using namespace vesselmesh;
@@ -334,10 +335,10 @@ TEST(Loop, OnePassToTheLimitIsTheLimitOfTheNextLevel) {
     }
 }
 
-TEST(Loop, SquareTubeShrinksToTheKnownMeanRadius) {
-  // A closed ring of square sections (circumradius 1, sections 1.5 apart, every quad cut along the same
-  // diagonal as the pipeline does) with so large a major radius that its curvature is negligible: a long tube
-  // without ends. With 1000 sections instead of 240 the means change by less than 3e-5.
+TEST(Loop, TubesShrinkToTheKnownMeanRadius) {
+  // A closed ring of square or octagonal sections (circumradius 1, sections 1.5 apart, every quad cut along
+  // the same diagonal as the pipeline does) with so large a major radius that its curvature is negligible: a
+  // long tube without ends. With 1000 sections instead of 240 the means change by less than 3e-5.
   const int sections = 240;
   const double major = 0.75 / std::sin(M_PI / sections);
   const auto mean_distance_from_axis = [&](const std::vector<Vec3>& points) {
@@ -345,19 +346,22 @@ TEST(Loop, SquareTubeShrinksToTheKnownMeanRadius) {
     for (const Vec3& p : points) sum += std::hypot(std::hypot(p.x(), p.y()) - major, p.z());
     return sum / static_cast<double>(points.size());
   };
-  const double expected[] = {1.0, 0.729, 0.674, 0.661};
+  const double square[] = {1.0, 0.729, 0.674, 0.661};
   TriMesh m = torus(sections, 4, major, 1);
   for (int level = 1; level <= 3; ++level) {
     m = loop_subdivide(m);
     const double r = mean_distance_from_axis(m.vertices);
-    std::cout << "level " << level << ": mean distance from the axis " << r << "\n";
-    EXPECT_NEAR(r, expected[level], 0.01) << "level " << level;
+    std::cout << "square, level " << level << ": mean distance from the axis " << r << "\n";
+    EXPECT_NEAR(r, square[level], 0.01) << "level " << level;
   }
-  // The limit surface, sampled at the limit points of the level-3 vertices (those of the control vertices
-  // alone are the corners' only, which lie farther out than the mean).
+  // The limit surfaces, sampled at the limit points of the level-3 vertices (those of the control vertices
+  // alone are the corners' only, which lie farther out than the mean): pipeline.cpp's radius scales.
   const double limit = mean_distance_from_axis(loop_limit(m).vertices);
-  std::cout << "limit: mean distance from the axis " << limit << "\n";
-  EXPECT_NEAR(limit, 0.657, 0.01);
+  std::cout << "square, limit: mean distance from the axis " << limit << "\n";
+  EXPECT_NEAR(limit, 1 / subdivision_radius_scale(4), 0.001);
+  const double octagon = mean_distance_from_axis(loop_limit(loop_subdivide(torus(sections, 8, major, 1), 3)).vertices);
+  std::cout << "octagon, limit: mean distance from the axis " << octagon << "\n";
+  EXPECT_NEAR(octagon, 1 / subdivision_radius_scale(8), 0.001);
 }
 
 TEST(Loop, VertexPropertyEqualToXStaysEqualToX) {
