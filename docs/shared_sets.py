@@ -5,7 +5,7 @@ check: the per-set table of docs/pipeline.md ("Where it stands").
                                          [--sets all|cerebral] [--mesh-args "..."] [--cli EXE]
 
 For each file: `vesselmesh mesh FILE -o out.ply --stats-json s.json [--method uniform]` (default options
-otherwise, level 2) and `vesselmesh check out.ply --centerline FILE --json`. Columns: sections (the tile
+otherwise, with --mesh-args added) and `vesselmesh check out.ply --centerline FILE --json`. Columns: sections (the tile
 stage's, joint squares included); triangles; topology ("ok": a closed, consistently oriented 2-manifold
 with one piece per input component); genus / the input's loops; self-intersecting triangle pairs (of them,
 in brackets, those outside overlapping input tubes); the share of the area whose faces lie over half a

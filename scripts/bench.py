@@ -4,7 +4,7 @@
     /usr/bin/python3 scripts/bench.py [--quick] [--repeat N] [--sizes N ...] [--no-blender]
 
 Core: the whole command `vesselmesh mesh FILE -o OUT.ply --stats-json STATS` at its default settings
-(levels 2, method curvature, uniform levels 1, threshold 0.7, fit onto, crossings separate, caps flat,
+(octagonal sections, level 1, fit onto, crossings separate, caps flat,
 verify auto: crossings checked up to a million triangles), under /usr/bin/time, on each shared data set
 (../shared/data, skipped with a note when absent), on each of the 42 brava-records trees (summarised:
 median and largest over the trees) and on synthetic networks (`vesselmesh synth --sections N --binary`,
@@ -282,7 +282,7 @@ def main():
 
     print(f"\n{'Quick' if args.quick else 'Full'} run, {time.strftime('%Y-%m-%d %H:%M')}, {time.time() - started:.0f} s: "
           f"{header}" + (f"; Blender {blender['blender']}" if blender else ""))
-    print(f"Core: `vesselmesh mesh FILE -o OUT.ply` at its defaults (levels 2, curvature method, fit onto, crossings "
+    print(f"Core: `vesselmesh mesh FILE -o OUT.ply` at its defaults (octagonal sections, level 1, fit onto, crossings "
           f"separate, verify auto), whole command, median of {args.repeat} runs (brava-records {min(args.repeat, 3)}, "
           f"1 M sections one); stages and other (reading, graph, writing) in seconds; synthetic networks with "
           f"{' '.join(SYNTH_LIMIT)}. Blender: medians of {args.repeat} runs in one session.\n")
