@@ -22,8 +22,8 @@ SETS = [("brava-bg0003", "brava-bg0003/BG0003_ColorCoded.CNG.swc", "mm"),
         ("human-brain-arteries", "human-brain-arteries/arteries_smooth.vtk", "m")]
 # The paper's dihedral angles per level (its Table 1, cerebral tree).
 DIHEDRAL_ANGLE = {1: 120.0, 2: 144.0, 3: 160.0}
-# The curvature method's thresholds the level-2 trade-off table runs through (0.7 is the default).
-THRESHOLDS = [0.1, 0.2, 0.3, 0.5, 0.7, 0.9]
+# The curvature method's thresholds the level-2 trade-off table runs through (0.72 is the default).
+THRESHOLDS = [0.1, 0.2, 0.3, 0.5, 0.72, 0.9]
 
 
 def methods(level):
@@ -72,7 +72,7 @@ def tradeoff(graph, level1, level2):
         faces, transition = surface["faces"], surface["transition"].astype(bool)
         unsplit = (faces < len(level1["vertices"])).all(axis=1) & ~transition
         d = vc.surface_distance(surface["vertices"], faces, level2["vertices"], level2["faces"], graph)["centroids"]
-        lines.append(f"| {threshold:.1f} | {len(faces):,} | {100 * len(faces) / len(level2['faces']):.1f} % "
+        lines.append(f"| {threshold:g} | {len(faces):,} | {100 * len(faces) / len(level2['faces']):.1f} % "
                      f"| {100 * unsplit.mean():.1f} % | {100 * transition.mean():.1f} % "
                      f"| {100 * d['median']:.2f} / {100 * d['p95']:.2f} % |")
         print(lines[-1], flush=True)
@@ -100,8 +100,8 @@ def main():
              "",
              "Each set's second table runs the curvature method at level 2 through several thresholds: the share "
              "of its faces that are unsplit level-1 triangles or crack-closing (transition) pieces, and where "
-             "their centroids lie. The 95th percentile of the distance to the uniform surface stays near 0 only "
-             "while hardly more than 5 % of the faces are coarser than level 2 (docs/pipeline.md, Table 1).",
+             "their centroids lie against the uniform surface; docs/pipeline.md (subdivide) has the adaptive "
+             "method against uniform by the face centroids' distance from the tubes.",
              ""]
     for title, relative, unit in SETS:
         path = args.shared / relative

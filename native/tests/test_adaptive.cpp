@@ -216,12 +216,12 @@ TEST(Adaptive, RejectsOptionsOutOfRange) {
   }
 }
 
-// The paper's claim on our cerebral trees (issue target): at level 2 the curvature method keeps at most
-// 65 % of uniform's triangles, every vertex on the uniform surface (95th percentile within 1 % of the
-// local radius), closed and of the right genus. docs/table1.md has the face-centroid distances too.
+// The paper's claim on our cerebral trees, judged by the error a user sees: at level 2 the curvature method
+// keeps at most 60 % of uniform's triangles, its face centroids at most 1.25× as far off the tubes at the
+// 95th percentile, closed and of the right genus. docs/table1.md has the other levels and methods.
 class SharedSurfaceTree : public testing::TestWithParam<const char*> {};
 
-TEST_P(SharedSurfaceTree, LevelTwoCurvatureKeepsAtMostSixtyFivePercentOnTheUniformSurface) {
+TEST_P(SharedSurfaceTree, LevelTwoCurvatureKeepsAtMostSixtyPercentAtNearlyUniformsFaceError) {
   SHARED_DATA_OR_SKIP(path, GetParam());
   const CenterlineGraph g = build_graph(read_centerline(path));
   MeshOptions o;
@@ -230,8 +230,9 @@ TEST_P(SharedSurfaceTree, LevelTwoCurvatureKeepsAtMostSixtyFivePercentOnTheUnifo
   const TriMesh uniform = mesh_centerline(g, o).mesh;
   o.subdivision.method = Refinement::curvature;
   const TriMesh adaptive = mesh_centerline(g, o).mesh;
-  EXPECT_LE(adaptive.faces.size(), 0.65 * uniform.faces.size());
-  EXPECT_LE(surface_distance(adaptive, uniform, g).vertices.p95, 0.01);
+  EXPECT_LE(adaptive.faces.size(), 0.60 * uniform.faces.size());
+  const double uniform_error = radius_fidelity(uniform, g).centroid_error.p95;
+  EXPECT_LE(radius_fidelity(adaptive, g).centroid_error.p95, 1.25 * uniform_error);
   const TopologyReport t = check_topology(adaptive);
   EXPECT_TRUE(t.closed_manifold());
   EXPECT_EQ(t.euler_characteristic, 2 * g.components - 2 * g.loops);

@@ -1,8 +1,8 @@
 #pragma once
 // The whole surface pipeline, stage by stage:
-//   graph → separate (crossing vessels) → sample → frames → tile (base mesh) → triangulate → subdivide
-//   (uniform or adaptive, onto the Loop limit surface) → round (tubes) → fit (onto the input's tubes)
-//   [→ curvature] → verify
+//   graph → separate (crossing vessels) → sample → frames → tile (base mesh of squares, then octagons) →
+//   triangulate → subdivide (uniform or adaptive, onto the Loop limit surface) → round (tubes) → fit (onto
+//   the input's tubes) [→ curvature] → verify
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
 #include <string>

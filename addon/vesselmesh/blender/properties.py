@@ -57,7 +57,7 @@ class MeshSettings:
         description="The first refining steps split every triangle, whatever Refine says: more gives rounder "
                     "straight vessels")
     threshold: FloatProperty(
-        name="Detail Threshold", default=0.7, min=0.0, max=1.0,
+        name="Detail Threshold", default=0.72, min=0.0, max=1.0,
         description="Refine Where It Bends: how curved a place must be to get finer triangles (0 to 1, ranked "
                     "over the surface); lower refines more of it")
     measure: EnumProperty(
