@@ -29,7 +29,7 @@ struct MeshOptions {
   Crossings crossings = Crossings::separate;
   SamplingOptions sampling;
   Caps caps = Caps::flat;
-  int sides = 8;  ///< round every base section: 8, or 4 (TileOptions::sides)
+  int sides = 8;  ///< round every base section: 8, or 4 (tile/octagons.hpp)
   SubdivisionOptions subdivision;
   Fit fit = Fit::onto;     ///< which vertices come onto the input's tubes (fit/fit.hpp)
   bool curvature = false;  ///< attach k1, k2, mean, gaussian, rms and the local tube radius as vertex properties
