@@ -238,9 +238,21 @@ void validate(const SubdivisionOptions& options) {
 
 SubdividedMesh subdivide(const TriMesh& base, const SubdivisionOptions& options) {
   validate(options);
-  const Hierarchy hierarchy = uniform_hierarchy(base, options.levels);
-  Forest forest(hierarchy);
+  Hierarchy hierarchy = uniform_hierarchy(base, options.levels);
   SubdividedMesh out;
+  if (options.method == Refinement::uniform || options.levels <= options.uniform_levels) {
+    // Every level splits every triangle: the finest uniform level is the result, as the forest would give
+    // it (same numbering), without building it again face by face (a third of the stage's time at 18
+    // million triangles).
+    out.mesh.vertices = std::move(hierarchy.limit);
+    out.mesh.faces = std::move(hierarchy.faces.back());
+    out.mesh.vertex_properties = std::move(hierarchy.properties);
+    out.face_level.assign(out.mesh.faces.size(), static_cast<uint8_t>(options.levels));
+    out.transition.assign(out.mesh.faces.size(), 0);
+    out.tagged.assign(static_cast<std::size_t>(options.levels), 1.0);
+    return out;
+  }
+  Forest forest(hierarchy);
   for (int level = 0; level < options.levels; ++level) {
     if (options.method == Refinement::uniform || level < options.uniform_levels) {
       forest.split_all();
