@@ -1,14 +1,19 @@
 """The paper's Table 1 on our data: triangle counts and quality of uniform, dihedral-angle and curvature
-subdivision at levels 1-3, written to docs/table1.md.
+subdivision at levels 0-3, written to docs/table1.md, and the triangles against the face error as a plot,
+docs/images/table1_face_error.png (rendered by docs/table1_plot.py in Blender, when `blender` is on the PATH).
 
     /usr/bin/python3 docs/table1.py [--shared ../shared/data] [--out docs/table1.md]
 
 Needs the built module (build/python) and the shared data sets brava-bg0003 and human-brain-arteries.
 """
 import argparse
+import json
 import os
 import platform
+import shutil
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -27,7 +32,10 @@ THRESHOLDS = [0.1, 0.2, 0.3, 0.5, 0.72, 0.9]
 
 
 def methods(level):
-    """(name, mesh options) in table order; adaptive levels start from one uniform level except at level 1."""
+    """(name, mesh options) in table order; adaptive levels start from one uniform level except at level 1.
+    Level 0 is the base mesh, the same for every method."""
+    if level == 0:
+        return [("uniform", dict(method="uniform"))]
     adaptive = dict(uniform_levels=0 if level == 1 else 1)
     return [("uniform", dict(method="uniform")),
             (f"dihedral {DIHEDRAL_ANGLE[level]:.0f}°", dict(method="dihedral", angle=DIHEDRAL_ANGLE[level], **adaptive)),
@@ -40,6 +48,7 @@ def row(graph, level, name, options, uniform):
     seconds = time.perf_counter() - start
     report = vc.check(surface["vertices"], surface["faces"], graph)
     topology, quality, fidelity = report["topology"], report["quality"], report["fidelity"]["abs_relative_error"]
+    centroids = report["fidelity"]["centroid_error"]
     rms = surface["curvature"]["rms"]
     triangles = len(surface["faces"])
     cells = [f"{level}", name, f"{triangles:,}",
@@ -48,7 +57,8 @@ def row(graph, level, name, options, uniform):
              f"{np.median(rms):.3g} / {np.percentile(rms, 95):.3g}",
              f"{quality['radius_ratio']['median']:.2f} / {quality['radius_ratio']['p95']:.2f}",
              f"{quality['min_angle']['min']:.1f}°",
-             f"{100 * fidelity['median']:.2f} / {100 * fidelity['p95']:.1f} %"]
+             f"{100 * fidelity['median']:.2f} / {100 * fidelity['p95']:.1f} %",
+             f"{100 * centroids['median']:.2f} / {100 * centroids['p95']:.1f} %"]
     if uniform is None:
         cells.append("–")
     else:
@@ -57,7 +67,7 @@ def row(graph, level, name, options, uniform):
                      f"{100 * d['centroids']['p95']:.2f} %")
     closed = report["closed_manifold"] and topology["euler_characteristic"] == 2 * graph.components - 2 * graph.loops
     cells += ["yes" if closed else "NO", f"{report['intersections']['pairs']:,}", f"{seconds:.2f}"]
-    return surface, "| " + " | ".join(cells) + " |"
+    return surface, "| " + " | ".join(cells) + " |", (level, triangles, 100 * centroids["p95"])
 
 
 def tradeoff(graph, level1, level2):
@@ -93,7 +103,9 @@ def main():
              "Columns: triangles and their share of uniform's; tagged: the share of triangles the adaptive levels "
              "tagged (mean over levels, uniform levels count as 100 %); RMS curvature sqrt((k1² + k2²)/2) median / "
              "95th percentile, in 1/unit; radius ratio R/r median / p95 (2 is equilateral); the smallest angle; "
-             "radius fidelity |error|/r median / p95; distance to the uniform surface of the same level over "
+             "radius fidelity |error|/r median / p95 at the vertices; face error: the distance of the face centroids "
+             "from the input's tubes over the local radius, area-weighted median / p95 (what a render shows between "
+             "the vertices; plotted against the triangles in images/table1_face_error.png); distance to the uniform surface of the same level over "
              "the local radius: p95 at the vertices · median / p95 at the face centroids; closed 2-manifold with "
              "χ = 2·components − 2·loops; self-intersecting triangle pairs (see docs/pipeline.md for the ones "
              "from overlapping input tubes); seconds.",
@@ -102,7 +114,11 @@ def main():
              "of its faces that are unsplit level-1 triangles or crack-closing (transition) pieces, and where "
              "their centroids lie against the uniform surface; docs/pipeline.md (subdivide) has the adaptive "
              "method against uniform by the face centroids' distance from the tubes.",
+             "",
+             "![Triangles against the face error at the 95th percentile, per method and level, on both sets]"
+             "(images/table1_face_error.png)",
              ""]
+    plot = {}
     for title, relative, unit in SETS:
         path = args.shared / relative
         if not path.exists():
@@ -110,16 +126,21 @@ def main():
         graph = vc.Graph.read(str(path))
         lines += [f"## {title} ({unit})", "",
                   "| level | method | triangles | of uniform | tagged | RMS curvature | R/r | min angle | fidelity "
-                  "| to uniform (vertices · centroids) | closed | intersections | s |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| face error | to uniform (vertices · centroids) | closed | intersections | s |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         uniforms = {}
-        for level in (1, 2, 3):
+        curves = plot.setdefault(title, {})
+        for level in (0, 1, 2, 3):
             uniform = None
             for name, options in methods(level):
-                surface, line = row(graph, level, name, options, uniform)
+                surface, line, point = row(graph, level, name, options, uniform)
                 uniform = uniform or surface
                 lines.append(line)
                 print(title, line, flush=True)
+                # A line per method (the dihedral angle changes with the level); level 0, the base mesh,
+                # starts each.
+                for method in (["uniform", "dihedral", "curvature"] if level == 0 else [name.split()[0]]):
+                    curves.setdefault(method, []).append(point)
             uniforms[level] = uniform
         lines += ["", f"Level 2, the curvature method's threshold against the distance to the uniform surface "
                   f"({title}):", "",
@@ -130,6 +151,21 @@ def main():
         lines.append("")
     args.out.write_text("\n".join(lines))
     print(f"wrote {args.out}")
+    render_plot(plot, args.out.parent / "images" / "table1_face_error.png")
+
+
+def render_plot(plot, png):
+    """The triangles against the face error, rendered by docs/table1_plot.py in Blender."""
+    if shutil.which("blender") is None:
+        print(f"blender not found: {png} not rendered")
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        points = Path(tmp) / "points.json"
+        points.write_text(json.dumps(plot))
+        subprocess.run(["blender", "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+                        str(ROOT / "docs" / "table1_plot.py"), "--", str(points), str(png)],
+                       check=True, stdout=subprocess.DEVNULL)
+    print(f"wrote {png}")
 
 
 if __name__ == "__main__":
