@@ -9,7 +9,7 @@
 namespace vesselmesh {
 
 GuardedMoves round_tubes(TriMesh& mesh) {
-  const auto p = find_tube_axis_properties(mesh);
+  const auto p = find_tube_axis_properties(mesh, kRoundAxisProperties);
   if (p[0] == nullptr) return {};
   std::vector<Vec3> move(mesh.vertices.size(), Vec3::Zero());
   std::vector<double> radius(mesh.vertices.size());

@@ -1057,12 +1057,14 @@ std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& ax
   return out;
 }
 
-std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(const TriMesh& mesh) {
+std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(const TriMesh& mesh,
+                                                                                       std::size_t count) {
   std::array<const std::vector<float>*, kTubeAxisNames.size()> p{};
-  for (std::size_t k = 0; k < p.size(); ++k)
+  count = std::min(count, p.size());
+  for (std::size_t k = 0; k < count; ++k)
     for (const VertexProperty& q : mesh.vertex_properties)
       if (q.name == kTubeAxisNames[k]) p[k] = &q.values;
-  if (std::any_of(p.begin(), p.end(), [](const auto* q) { return q == nullptr; })) p.fill(nullptr);
+  if (std::any_of(p.begin(), p.begin() + count, [](const auto* q) { return q == nullptr; })) p.fill(nullptr);
   return p;
 }
 

@@ -56,9 +56,13 @@ inline const std::array<std::string, 12> kTubeAxisNames = {
 /// The axes as those vertex properties.
 std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& axes);
 
-/// A mesh's tube properties, in kTubeAxisNames' order (what round/ and curvature/ read); all null unless
-/// it has every one.
-std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(const TriMesh& mesh);
+/// How many of kTubeAxisNames, from the first, the round stage reads (offset, radius, weight); the rest,
+/// the axis's shape, only the tube curvature reads.
+constexpr std::size_t kRoundAxisProperties = 5;
+/// A mesh's first `count` tube properties, in kTubeAxisNames' order (what round/ and curvature/ read), the
+/// others null; all null unless it has every one of those.
+std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(
+    const TriMesh& mesh, std::size_t count = kTubeAxisNames.size());
 
 struct BaseMesh {
   std::vector<Vec3> vertices;

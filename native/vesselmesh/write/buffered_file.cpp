@@ -20,7 +20,11 @@ void BufferedFile::text(std::string_view s) {
 }
 
 void BufferedFile::little_endian(uint64_t bits, std::size_t size) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  buffer_.append(reinterpret_cast<const char*>(&bits), size);  // a byte at a time took twice as long
+#else
   for (std::size_t i = 0; i < size; ++i) buffer_ += static_cast<char>(bits >> (8 * i) & 0xff);
+#endif
   flush_when_full();
 }
 
