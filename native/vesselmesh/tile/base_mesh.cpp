@@ -13,6 +13,7 @@
 #include "vesselmesh/frames/frames.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/graph/union_find.hpp"
+#include "vesselmesh/parallel.hpp"
 #include "vesselmesh/sample/branch_curve.hpp"
 #include "vesselmesh/tile/convex_hull.hpp"
 #include "vesselmesh/tile/corners.hpp"
@@ -93,6 +94,16 @@ struct Tunnel {
   double reach() const { return 4 * radius; }
 };
 
+/// A tube's sections before it joins the mesh (Tiler::plan_tube).
+struct TubePlan {
+  std::vector<Section> sections;  ///< placed for the limit surface, with their frames
+  std::vector<Vec3> axis;         ///< per section: the direction the tube really runs (add_section)
+  std::vector<Vec3> bend;         ///< per section: the axis's curvature vector (TubeAxis)
+  std::vector<double> slope;      ///< per section: dr/ds
+  bool ring = false;              ///< a closed ring of degree-2 points
+  int k = 0;                      ///< the quarter turn the frames end with (transport_frames)
+};
+
 /// A joint patch: one joint, or several joints too close to part, and the branch ends that meet it.
 struct Patch {
   std::vector<int32_t> joints;  ///< joint points
@@ -143,9 +154,20 @@ class Tiler {
       std::fill(shared_vertex_.begin(), shared_vertex_.end(), -1);
       closed = std::all_of(patches_.begin(), patches_.end(), [&](const Patch& p) { return build_patch(p); });
     }
+    // Tubes are planned on every core at once, then added in branch order: the numbering does not depend
+    // on the cores.
+    std::vector<TubePlan> plans(branches_.size());
+    parallel_for(
+        branches_.size(),
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t b = begin; b < end; ++b)
+            if (kind_[b] == Kind::tube) plans[b] = plan_tube(static_cast<int32_t>(b));
+        },
+        kBranchesPerTask);
     for (std::size_t b = 0; b < branches_.size(); ++b) {
-      if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b));
+      if (kind_[b] == Kind::tube) build_tube(static_cast<int32_t>(b), plans[b]);
       if (kind_[b] == Kind::tunnel) build_tunnel(static_cast<int32_t>(b));
+      plans[b] = {};
     }
     drop_unused_vertices();
     return std::move(mesh_);
@@ -512,6 +534,17 @@ class Tiler {
   /// Decides the kind of each branch from where its squares stand (find_patches); true when one
   /// changed. `thorough`: whether tube_folds looks at every tube between two joints, not only short ones.
   bool decide_kinds(bool thorough) {
+    // Whether each tube between two joints folds, looked at on every core at once: deciding one branch's
+    // kind moves no other branch's squares.
+    std::vector<char> folds(branches_.size(), 0);
+    parallel_for(
+        branches_.size(),
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t b = begin; b < end; ++b)
+            if (kind_[b] == Kind::tube && head_[b] >= 0 && tail_[b] >= 0 && has_room(static_cast<int32_t>(b)))
+              folds[b] = tube_folds(static_cast<int32_t>(b), thorough);
+        },
+        kBranchesPerTask);
     bool changed = false;
     for (std::size_t bi = 0; bi < branches_.size(); ++bi) {
       const int32_t b = static_cast<int32_t>(bi);
@@ -523,18 +556,25 @@ class Tiler {
         const Patch& hp = patches_[patch_of_end_[head_[b]]];
         const Patch& tp = patches_[patch_of_end_[tail_[b]]];
         if (intrusion(ends_[head_[b]], hp) <= 0 && intrusion(ends_[tail_[b]], tp) <= 0) continue;
-      } else {
-        double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
-        bool stuck = false;
-        for (int32_t i : {head_[b], tail_[b]})
-          if (i >= 0) used += ends_[i].t, stuck |= ends_[i].stuck;
-        if (!stuck && used <= curves_[b].length() && (both ? !tube_folds(b, thorough) : room_for_tube(b)))
-          continue;
+      } else if (has_room(b) && (both ? !folds[b] : room_for_tube(b))) {
+        continue;
       }
       changed = true;
       give_up_tube(b);
     }
     return changed;
+  }
+
+  /// Whether branch b's squares left it room for a tube: neither is stuck, and they stand a quarter radius
+  /// or more apart along it.
+  bool has_room(int32_t b) const {
+    double used = 0.25 * std::min(curves_[b].radius.front(), curves_[b].radius.back());
+    for (int32_t i : {head_[b], tail_[b]})
+      if (i >= 0) {
+        if (ends_[i].stuck) return false;
+        used += ends_[i].t;
+      }
+    return used <= curves_[b].length();
   }
 
   /// Branch b is no tube (or shared square) at its joints: a stub when it ends at a terminal, else a
@@ -915,18 +955,24 @@ class Tiler {
     return true;
   }
 
-  void build_tube(int32_t b) {
+  /// Branch b's tube (kind tube) before it joins the mesh: its sections placed for the limit surface, with
+  /// the axis, bend and slope at each, and the quarter turn k its frames end with. Reads only the branch
+  /// and the squares at its ends, so that tubes are planned on every core at once.
+  TubePlan plan_tube(int32_t b) const {
     const BranchCurve& c = curves_[b];
     const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
     const End* tail = tail_[b] >= 0 ? &ends_[tail_[b]] : nullptr;
     const bool ring = first_point(b) == last_point(b) && !head;
     const double from = head ? head->t : 0.0, to = c.length() - (tail ? tail->t : 0.0);
-    SamplingOptions sampling = opt_.sampling;
-    sampling.max_sections = std::max<int64_t>(2, opt_.max_sections - mesh_.sections);
+    SamplingOptions sampling = opt_.sampling;  // the sections in all are counted as they are added
+    sampling.max_sections = opt_.max_sections;
     std::vector<double> arcs = sample_branch(c, from, to, sampling);
     if (ring && arcs.size() < 4) arcs = {0.0, c.length() / 3, 2 * c.length() / 3, c.length()};
 
-    std::vector<Section> sections(arcs.size());
+    TubePlan plan;
+    plan.ring = ring;
+    std::vector<Section>& sections = plan.sections;
+    sections.resize(arcs.size());
     for (std::size_t i = 0; i < arcs.size(); ++i) {
       sections[i].center = c.position(arcs[i]);
       sections[i].radius = c.radius_at(arcs[i]);
@@ -941,15 +987,18 @@ class Tiler {
     }
     const std::size_t m = sections.size() - 1;
     // Where the tube really runs at each section: along the polyline through the centres.
-    std::vector<Vec3> axis(m + 1);
+    std::vector<Vec3>& axis = plan.axis;
+    axis.resize(m + 1);
     for (std::size_t i = 0; i <= m; ++i)
       axis[i] = (sections[std::min(i + 1, m)].center - sections[i > 0 ? i - 1 : 0].center).normalized();
     // The bend of the axis through the centres (the difference of the unit chords either side over half
     // their length, exact for centres on a circle) and the radius's slope along it, before the centres move
     // for the limit surface to pass through them: the round stage puts the surface on circles about that
     // axis, so this is the shape whose curvature the tube has.
-    std::vector<Vec3> bend(m + 1, Vec3::Zero());
-    std::vector<double> slope(m + 1, 0.0);
+    std::vector<Vec3>& bend = plan.bend;
+    std::vector<double>& slope = plan.slope;
+    bend.assign(m + 1, Vec3::Zero());
+    slope.assign(m + 1, 0.0);
     for (std::size_t i = 0; i <= m; ++i) {
       const std::size_t a = i > 0 ? i - 1 : ring ? m - 1 : 0, b = i < m ? i + 1 : ring ? 1 : m;
       const Vec3 in = sections[i].center - sections[a].center, out = sections[b].center - sections[i].center;
@@ -961,8 +1010,20 @@ class Tiler {
     sections.front().up = head ? head->square.up : any_perpendicular(sections.front().normal);
     const Vec3 first_up = sections.front().up;
     const Vec3* target = tail ? &tail->square.up : ring ? &first_up : nullptr;
-    const int k = transport_frames(sections, target);
+    plan.k = transport_frames(sections, target);
+    return plan;
+  }
 
+
+  /// Adds branch b's tube, as planned (plan_tube), to the mesh: its sections' corners and the quads between
+  /// them, and flat caps at its terminals.
+  void build_tube(int32_t b, const TubePlan& plan) {
+    const End* head = head_[b] >= 0 ? &ends_[head_[b]] : nullptr;
+    const End* tail = tail_[b] >= 0 ? &ends_[tail_[b]] : nullptr;
+    const bool ring = plan.ring;
+    const int k = plan.k;
+    const std::vector<Section>& sections = plan.sections;
+    const std::size_t m = sections.size() - 1;
     // Vertex ids of each section's corners, counter-clockwise about the direction of travel.
     std::vector<std::array<int32_t, 4>> ids(m + 1);
     for (std::size_t i = 0; i <= m; ++i) {
@@ -976,7 +1037,7 @@ class Tiler {
       } else {
         // A terminal's end section, whose corners the flat cap joins, keeps the cap's shape.
         const bool cap = !ring && (i == 0 || i == m);
-        const int32_t first = add_section(sections[i], axis[i], cap ? 0.0 : 1.0, bend[i], slope[i]);
+        const int32_t first = add_section(sections[i], plan.axis[i], cap ? 0.0 : 1.0, plan.bend[i], plan.slope[i]);
         for (int j = 0; j < 4; ++j) ids[i][j] = first + j;
       }
     }

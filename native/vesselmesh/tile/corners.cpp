@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "vesselmesh/parallel.hpp"
 #include "vesselmesh/sample/branch_curve.hpp"
 #include "vesselmesh/tile/tube_sections.hpp"
 
@@ -94,6 +95,34 @@ void mark_corners(const CenterlineGraph& g, const Branch& b, std::vector<char>& 
   }
 }
 
+/// Branch b cut at its corners, which it marks in `corner` (its inner points only).
+std::vector<Branch> cut_branch(const CenterlineGraph& g, const Branch& b, const SamplingOptions& sampling,
+                               double scale, std::vector<char>& corner) {
+  const std::size_t k = b.points.size() - 1;
+  if (b.points.front() == b.points.back() && g.degree(b.points.front()) < 3 && !corner[b.points.front()])
+    return {b};
+  mark_corners(g, b, corner);
+  std::vector<Branch> pieces;
+  for (bool cut = true; cut;) {
+    pieces.clear();
+    std::size_t from = 0;
+    for (std::size_t i = 1; i <= k; ++i) {
+      if (i < k && !corner[b.points[i]]) continue;
+      Branch piece;
+      piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
+      piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
+      pieces.push_back(std::move(piece));
+      from = i;
+    }
+    cut = false;
+    for (const Branch& piece : pieces) {
+      const int32_t bend = tight_bend(g, piece, sampling, scale);
+      if (bend >= 0) corner[bend] = 1, cut = true;
+    }
+  }
+  return pieces;
+}
+
 }  // namespace
 
 /// Cuts the branches at their sharp corners (mark_corners), which then join their two pieces like any
@@ -103,36 +132,17 @@ void mark_corners(const CenterlineGraph& g, const Branch& b, std::vector<char>& 
 /// Closed rings of degree-2 points are left whole.
 CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale) {
   CutBranches out;
-  std::vector<Branch>& branches = out.branches;
   std::vector<char>& corner = out.corner;
   corner.assign(g.points.size(), 0);
-  for (const Branch& b : g.branches) {
-    const std::size_t k = b.points.size() - 1;
-    if (b.points.front() == b.points.back() && g.degree(b.points.front()) < 3 && !corner[b.points.front()]) {
-      branches.push_back(b);
-      continue;
-    }
-    mark_corners(g, b, corner);
-    std::vector<Branch> pieces;
-    for (bool cut = true; cut;) {
-      pieces.clear();
-      std::size_t from = 0;
-      for (std::size_t i = 1; i <= k; ++i) {
-        if (i < k && !corner[b.points[i]]) continue;
-        Branch piece;
-        piece.points.assign(b.points.begin() + from, b.points.begin() + i + 1);
-        piece.edges.assign(b.edges.begin() + from, b.edges.begin() + i);
-        pieces.push_back(std::move(piece));
-        from = i;
-      }
-      cut = false;
-      for (const Branch& piece : pieces) {
-        const int32_t bend = tight_bend(g, piece, sampling, scale);
-        if (bend >= 0) corner[bend] = 1, cut = true;
-      }
-    }
-    branches.insert(branches.end(), pieces.begin(), pieces.end());
-  }
+  std::vector<std::vector<Branch>> pieces(g.branches.size());
+  parallel_for(
+      g.branches.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) pieces[i] = cut_branch(g, g.branches[i], sampling, scale, corner);
+      },
+      kBranchesPerTask);
+  for (std::vector<Branch>& p : pieces)
+    for (Branch& piece : p) out.branches.push_back(std::move(piece));
   return out;
 }
 

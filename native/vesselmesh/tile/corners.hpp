@@ -10,12 +10,16 @@
 
 namespace vesselmesh {
 
+/// Branches per task where the tiling works on every core at once: each costs a sampling of the branch.
+constexpr std::size_t kBranchesPerTask = 16;
+
 struct CutBranches {
   std::vector<Branch> branches;  ///< the graph's branches, cut at the corners
   std::vector<char> corner;      ///< per point: a corner, tiled as a joint of two branches
 };
 
-/// The graph's branches cut at their sharp corners; closed rings of degree-2 points are left whole.
+/// The graph's branches cut at their sharp corners; closed rings of degree-2 points are left whole. The
+/// branches are cut on every core at once (each marks only its own inner points).
 /// Sections are sampled as `sampling` says, their corners at `scale` × radius.
 CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale);
 
