@@ -372,6 +372,23 @@ inline CenterlineData siblings_side_by_side(double scale) {
   return d;
 }
 
+/// A child traced straight back along its parent from their joint, as brava-records BH0004 has one: a
+/// parent of radius 0.45 along an arc of radius 15 (115°, points about 1.25 apart) into the joint, a child
+/// that turns back inside the parent's tube and runs the arc 0.7 nearer its centre to beside the parent's
+/// first point (the two tubes overlap all along), and a branch on from the joint, 12 long.
+inline CenterlineData child_traced_back_along_its_parent(double scale) {
+  const double r = 0.45, radius = 15, span = 115 * M_PI / 180;
+  auto at = [&](double a, double rr) -> Vec3 { return scale * Vec3(rr * std::cos(a), 0, rr * std::sin(a)); };
+  const int n = static_cast<int>(radius * span / 1.25);
+  CenterlineData d = start(at(0, radius), r * scale);
+  int32_t joint = 0;
+  for (int i = 1; i <= n; ++i) joint = run(d, joint, at(span * i / n, radius), 1, r * scale);
+  int32_t back = joint;
+  for (int i = n - 1; i >= 1; --i) back = run(d, back, at(span * i / n, radius - 0.7), 1, r * scale);
+  run(d, joint, d.points[joint] + scale * 12 * Vec3(-std::sin(span), 0, std::cos(span)), 10, r * scale);
+  return d;
+}
+
 /// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
 /// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
 /// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from

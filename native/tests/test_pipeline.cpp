@@ -181,6 +181,20 @@ TEST(Pipeline, SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
   }
 }
 
+// Not met yet (docs/pipeline.md, decisions log): the separate stage counts vessels that overlap all the
+// way back to a joint they share as no crossing, their squares push each other to the far end, and the
+// child is given up into the joint's patch, whose hull spans the whole bent pair: 11.6 to 13.4 radii off
+// the tubes, 64 % of the area over half a radius off, and crossing pairs at level 0. brava-records BH0004
+// has one, 16.9 radii off.
+TEST(Pipeline, DISABLED_ChildTracedBackAlongItsParentLeavesNoFin) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::child_traced_back_along_its_parent(scale));
+    for (int levels = 0; levels <= 2; ++levels)
+      expect_on_its_tubes(mesh_at(g, levels).mesh, g,
+                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.002, 5);
+  }
+}
+
 // Not met before a short tube that no fold-free sections join to its two squares was no tube: it folded
 // between two patches whose squares faced it from sides a right angle apart (9, 24, 61 and 105 crossing
 // pairs at levels 0 to 3; brava-records BH0005 crossed itself so).
