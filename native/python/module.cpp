@@ -295,6 +295,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         out["stats"] = json_to_python(stats_json(r, -1));
         out["curvature"] = property_dict(r.mesh.vertex_properties);
         out["transition"] = to_array(r.transition.data(), {static_cast<py::ssize_t>(r.transition.size())});
+        out["centerline"] = r.separated ? py::cast(std::move(*r.separated)) : py::none();
         return out;
       },
       py::arg("graph"), py::kw_only(), py::arg("levels") = MeshOptions().subdivision.levels, py::arg("sampling") = "bidirectional",
@@ -314,7 +315,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "'dihedral';\n"
       "threshold and measure ('tube-departure', 'rms', 'gaussian', 'abs-gaussian', 'mean', 'abs-mean') for\n"
       "curvature, angle (degrees) for dihedral; the first uniform_levels levels split every triangle.\n"
-      "crossings: vessels whose tubes cross away from a joint, 'separate' (moved apart) or 'keep'.\n"
+      "crossings: vessels whose tubes cross away from a joint, 'separate' (moved apart) or 'keep'; centerline\n"
+      "is the Graph whose tubes the surface follows where they were moved apart (check against it for the\n"
+      "fidelity to the vessels as built), None where nothing moved.\n"
       "fit: which vertices come onto the input's tubes, 'onto' (all), 'inward' (those outside) or 'none'.\n"
       "tolerance: sections further apart than alpha's where a straight piece of tube stays within this\n"
       "fraction of the local radius of the centerline (0: alpha's spacing alone), in pieces of up to\n"

@@ -187,6 +187,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.verification = verify(result.mesh, *centerline, options.verify);
   record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
+  if (separation.moved_points > 0) result.separated = std::move(separation.graph);
   return result;
 }
 

@@ -5,6 +5,7 @@
 //   the input's tubes) [→ curvature] → verify
 // with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,10 @@ struct MeshResult {
   double largest_separation = 0;  ///< its largest move, relative to the point's radius
   int64_t crossings_left = 0;     ///< crossing edge pairs it left
   bool tangle = false;            ///< it left them all: too dense to part (Separation::tangle)
+  /// The centerline whose tubes the surface follows, where the separate stage moved vessels (with the
+  /// points it added round the crossings); empty when it moved none. Fidelity to the vessels as built is
+  /// measured against it, to the file's vessels against the input.
+  std::optional<CenterlineGraph> separated;
   int64_t rounded_vertices = 0;   ///< vertices the round stage moved onto their tube's circle
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube

@@ -187,6 +187,18 @@ def test_crossing_vessels_are_moved_apart_unless_kept(project_data):
     assert crossed["pairs"] == crossed["pairs_in_overlapping_tubes"] > 0
 
 
+def test_the_centerline_the_surface_follows_comes_back_where_vessels_were_moved(project_data):
+    graph = vm.Graph.read(str(project_data / "crossing.swc"))
+    separated = vm.mesh(graph, levels=1)
+    moved = separated["centerline"]
+    assert moved.points.shape[0] > graph.points.shape[0]  # points added round the crossing
+    area_off = [vm.check(separated["vertices"], separated["faces"], g)["fidelity"]["area_off_tubes"]
+                for g in (graph, moved)]
+    assert area_off[1] < area_off[0]  # the moved vessels are off the file's tubes, not off their own
+    assert vm.mesh(graph, levels=1, crossings="keep")["centerline"] is None
+    assert vm.mesh(vm.Graph.read(str(project_data / "bifurcation.swc")), levels=1)["centerline"] is None
+
+
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
                                     dict(angle=-1.0), dict(fit="outward"), dict(crossings="merge")])
