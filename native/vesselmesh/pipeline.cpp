@@ -139,14 +139,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   start = Clock::now();
   result.mesh = triangulate(base);
   // Only the curvature reads the axis's shape: without it, subdivision carries 5 properties instead of 12.
-  if (!options.curvature)
-    result.mesh.vertex_properties.erase(
-        std::remove_if(result.mesh.vertex_properties.begin(), result.mesh.vertex_properties.end(),
-                       [](const VertexProperty& q) {
-                         return std::find(kTubeAxisNames.begin() + kRoundAxisProperties, kTubeAxisNames.end(),
-                                          q.name) != kTubeAxisNames.end();
-                       }),
-        result.mesh.vertex_properties.end());
+  if (!options.curvature) drop_tube_axis_properties(result.mesh, kRoundAxisProperties);
   record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
 

@@ -22,12 +22,7 @@ GuardedMoves round_tubes(TriMesh& mesh) {
       if (weight > 0 && length > 0) move[v] = weight * (radius[v] / length - 1) * out;
     }
   });
-  mesh.vertex_properties.erase(std::remove_if(mesh.vertex_properties.begin(), mesh.vertex_properties.end(),
-                                              [](const VertexProperty& q) {
-                                                return std::find(kTubeAxisNames.begin(), kTubeAxisNames.end(),
-                                                                 q.name) != kTubeAxisNames.end();
-                                              }),
-                               mesh.vertex_properties.end());
+  drop_tube_axis_properties(mesh);
   return move_without_folding(mesh, std::move(move), radius);
 }
 

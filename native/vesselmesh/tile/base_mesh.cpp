@@ -1129,6 +1129,16 @@ std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_prop
   return p;
 }
 
+void drop_tube_axis_properties(TriMesh& mesh, std::size_t from) {
+  const auto first = kTubeAxisNames.begin() + static_cast<std::ptrdiff_t>(std::min(from, kTubeAxisNames.size()));
+  auto& p = mesh.vertex_properties;
+  p.erase(std::remove_if(p.begin(), p.end(),
+                         [&](const VertexProperty& q) {
+                           return std::find(first, kTubeAxisNames.end(), q.name) != kTubeAxisNames.end();
+                         }),
+          p.end());
+}
+
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options) {
   return Tiler(graph, options).run();
 }

@@ -59,6 +59,9 @@ std::vector<VertexProperty> tube_axis_properties(const std::vector<TubeAxis>& ax
 /// How many of kTubeAxisNames, from the first, the round stage reads (offset, radius, weight); the rest,
 /// the axis's shape, only the tube curvature reads.
 constexpr std::size_t kRoundAxisProperties = 5;
+/// Removes the mesh's tube properties from kTubeAxisNames[from] on (0: all of them, once the round stage has
+/// read them; kRoundAxisProperties: the axis's shape, when no curvature is asked for).
+void drop_tube_axis_properties(TriMesh& mesh, std::size_t from = 0);
 /// A mesh's first `count` tube properties, in kTubeAxisNames' order (what round/ and curvature/ read), the
 /// others null; all null unless it has every one of those.
 std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(
