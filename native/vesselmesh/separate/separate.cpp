@@ -237,14 +237,17 @@ std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, con
   if (overlapping.empty()) return {};
   JointOverlaps joint_overlaps(g, cones);
   std::map<std::array<int32_t, 3>, double> extent;  // joint_overlaps.extent(a, b, j), once each
-  // Whether parameter s of edge e lies within the overlap of its branch with branch b from joint j.
-  auto overlaps_from_joint = [&](int32_t e, double s, int32_t b, int32_t j) {
+  // Whether parameter s of edge e lies within the overlap of its branch with branch b from joint j, as a
+  // fork's: within `reach` of j along its branch, or on an overlap that ends within twice that (the tubes
+  // of a fork at a small angle part by themselves; tubes that run on overlapping side by side do not).
+  auto overlaps_from_joint = [&](int32_t e, double s, int32_t b, int32_t j, double reach) {
     const int32_t a = cones.cone(e).branch;
     const double at = cones.arc_at(e, s);
     const double from_j = g.branches[a].points.front() == j ? at : cones.branch_length(a) - at;
+    if (from_j > 2 * reach) return false;
     auto [it, fresh] = extent.emplace(std::array<int32_t, 3>{a, b, j}, 0.0);
     if (fresh) it->second = joint_overlaps.extent(a, b, j);
-    return from_j <= it->second;
+    return from_j <= it->second && (from_j <= reach || it->second <= 2 * reach);
   };
   PathLengths paths(g);
   std::vector<std::array<int32_t, 2>> out;
@@ -252,14 +255,18 @@ std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, con
     const RoundCone& k = cones.cone(e);
     const RoundCone& l = cones.cone(f);
     const auto [s, t] = closest_parameters(k.c0, k.c1, l.c0, l.c1);
-    if (paths.near(e, s, f, t, kJointReach * (k.radius_at(s) + l.radius_at(t)))) continue;
+    const double reach = kJointReach * (k.radius_at(s) + l.radius_at(t));
+    if (paths.near(e, s, f, t, reach)) continue;
     bool from_joint = false;
     const Branch& a = g.branches[k.branch];
     const Branch& b = g.branches[l.branch];
     for (int32_t j : {a.points.front(), a.points.back()})
-      if (k.branch != l.branch && (j == b.points.front() || j == b.points.back()))
-        from_joint =
-            from_joint || (overlaps_from_joint(e, s, l.branch, j) && overlaps_from_joint(f, t, k.branch, j));
+      if (k.branch != l.branch && (j == b.points.front() || j == b.points.back())) {
+        // The joint's reach: that of the pair's tubes or of its widest tube (a soma's), as the tile's is.
+        const double joint_reach = std::max(reach, kJointReach * g.radius[j]);
+        from_joint = from_joint || (overlaps_from_joint(e, s, l.branch, j, joint_reach) &&
+                                    overlaps_from_joint(f, t, k.branch, j, joint_reach));
+      }
     if (!from_joint) out.push_back({e, f});
   }
   return out;

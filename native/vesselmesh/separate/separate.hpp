@@ -6,8 +6,12 @@
 // cross itself there. Real vessels do not pass through each other; the tracing put them too close. So
 // the centerline points there move apart, each vessel by the same share of its own radius, each move
 // spread smoothly along its branch, until the two tubes lie a little apart. Tubes that overlap where
-// they leave a joint they share (a fork at a small angle, vessels that run on side by side from it) are
-// no crossing: they stay, and the fit presses the two surfaces flat against each other there.
+// they leave a joint they share (a fork at a small angle) are no crossing within the joint's reach
+// (kJointReach times the sum of their radii from it): they stay, and the fit presses the two surfaces
+// flat against each other there. Beyond it they are parted like any others: two vessels that run on
+// side by side from a joint, their tubes overlapping all along (a child traced back along its parent),
+// would otherwise leave the joint's squares no place where each clears the other, and the joint's
+// patch would span both, a fin along them.
 
 #include <array>
 #include <cstdint>
@@ -27,7 +31,8 @@ enum class Crossings {
 /// The pairs of edges (e < f) of `g` (whose round cones `cones` holds) whose tubes cross: they overlap,
 /// or come within `gap` of each other (RoundCones::overlapping_edges), their closest axis points lie
 /// more than kJointReach times the sum of their radii apart along the graph, and the two do not overlap
-/// all the way back to a joint their branches share.
+/// all the way back to a joint their branches share that lies within that distance of both along their
+/// branches.
 std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, const RoundCones& cones,
                                                    double gap = 0);
 

@@ -39,6 +39,10 @@ constexpr int kSharedTries = 4;
 /// may tilt to clear the other squares (see tilt_square).
 constexpr double kTiltFrom = 2;
 
+/// A square held back by the square beside it is tried at this many steps along its push, less one
+/// (tilt_on_the_way).
+constexpr int kWaySteps = 4;
+
 /// Rounds of pushing a patch's squares out (push_squares) before those that have not cleared the others
 /// are taken as stuck. Branches that run side by side from a joint, their tubes overlapping all along
 /// (vessels duplicated a little apart), push each other's squares on in turn, a fraction of a radius a
@@ -340,7 +344,9 @@ class Tiler {
         if (kind_[e.branch] == Kind::tube && e.t >= tilt_from && tilt_square(e, p)) continue;
         // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
         const double length = travel(e);
-        e.t = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
+        const double to = std::min(length, e.t + std::max(overlap, 0.05 * e.square.radius));
+        if (kind_[e.branch] == Kind::tube && tilt_on_the_way(e, p, to, tilt_from)) continue;
+        e.t = to;
         e.stuck = e.t >= length;
         e.square = square_at(e, e.t);
       }
@@ -351,6 +357,60 @@ class Tiler {
       End& e = ends_[i];
       if (!e.fixed && intrusion(e, p) > 0) e.stuck = true;
     }
+  }
+
+  /// Tries the square of `e`, standing or tilted (tilt_square), at kWaySteps − 1 points on its way to arc
+  /// distance `to` where no tube lies beside it; true, the square placed there, when one clears the others.
+  /// Only for a square held back by the square beside it (held_back_beside). Two branches that run on side
+  /// by side from a joint push each other's squares on by turns, each whole step taking one past the other,
+  /// from where it cannot tilt clear of the other's corners (where the tracing wavers, their squares face
+  /// 25° to 55° apart); abreast, they can. Taking every step whole, the squares of brava-records BH0004's
+  /// child traced back along its parent went on for 14 mm, the joint's patch along them (docs/pipeline.md).
+  bool tilt_on_the_way(End& e, const Patch& p, double to, double tilt_from) {
+    if (!held_back_beside(e, p)) return false;
+    const double from = e.t;
+    for (int k = 1; k < kWaySteps; ++k) {
+      e.t = from + (to - from) * k / kWaySteps;
+      if (e.t < tilt_from) continue;
+      e.square = square_at(e, e.t);
+      if (tubes_apart(e, p) && (intrusion(e, p) <= 0 || tilt_square(e, p))) return true;
+    }
+    e.t = from;
+    e.square = square_at(e, e.t);
+    return false;
+  }
+
+  /// Whether the square whose corners reach furthest past the plane of e's is a tube's, within their two
+  /// corner radii of e's across the branch.
+  bool held_back_beside(const End& e, const Patch& p) const {
+    double furthest = -std::numeric_limits<double>::infinity();
+    const End* by = nullptr;
+    for (int32_t i : p.ends) {
+      const End& o = ends_[i];
+      if (&o == &e) continue;
+      for (int q = 0; q < 4; ++q) {
+        const double reach = e.square.normal.dot(o.square.corner(q, scale()) - e.square.center);
+        if (reach > furthest) furthest = reach, by = &o;
+      }
+    }
+    return by && kind_[by->branch] == Kind::tube &&
+           across(e, *by) < scale() * (e.square.radius + by->square.radius);
+  }
+
+  /// Whether no other tube square of the patch lies closer to e's across the branch than their two radii.
+  bool tubes_apart(const End& e, const Patch& p) const {
+    for (int32_t i : p.ends) {
+      const End& o = ends_[i];
+      if (&o != &e && kind_[o.branch] == Kind::tube && across(e, o) < e.square.radius + o.square.radius)
+        return false;
+    }
+    return true;
+  }
+
+  /// The distance of o's square's centre from e's, across e's branch (in the plane of e's square).
+  static double across(const End& e, const End& o) {
+    const Vec3 d = o.square.center - e.square.center;
+    return (d - d.dot(e.square.normal) * e.square.normal).norm();
   }
 
   /// Tilts the square of `e`, where it stands, from its branch's direction by the fewest steps of 15° (up to
