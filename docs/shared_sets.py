@@ -2,18 +2,20 @@
 check: the per-set table of docs/pipeline.md ("Where it stands").
 
     /usr/bin/python3 docs/shared_sets.py [--shared ../shared/data] [--cohort N] [--method default|uniform|both]
-                                         [--sets all|cerebral] [--mesh-args "..."] [--cli EXE]
+                                         [--sets all|cerebral] [--against moved|file] [--mesh-args "..."] [--cli EXE]
 
-For each file: `vesselmesh mesh FILE -o out.ply --stats-json s.json [--method uniform]` (default options
-otherwise, with --mesh-args added) and `vesselmesh check out.ply --centerline FILE --json`. Columns: sections (the tile
+For each file: `vesselmesh mesh FILE -o out.ply --stats-json s.json --centerline-out moved.vtk [--method uniform]`
+(default options otherwise, with --mesh-args added) and `vesselmesh check out.ply --centerline moved.vtk --json`:
+measured against the tubes the surface follows, those of the centerline as the separate stage left it, its
+crossing vessels moved apart (`--against file`: against the file's own tubes, where the moved vessels count
+as off them). Columns: sections (the tile
 stage's, joint squares included); triangles; topology ("ok": a closed, consistently oriented 2-manifold
 with one piece per input component); genus / the input's loops; self-intersecting triangle pairs (of them,
 in brackets, those outside overlapping input tubes); the share of the area whose faces lie over half a
 local radius off the input's tubes; the furthest face centroid from them, in local radii; face-centroid
 error median / 95th / 99th percentile (|distance to the tubes| over the local radius, area-weighted, %); vertex
 radius error at the 95th percentile (%); the longest stretch of the input's axis with no surface round it
-(radii); seconds for `mesh`. Every distance is to the input's tubes, so vessels the separate stage moved
-apart count as off them. The cohort (the first N files in name order, all 42 by default) is given as its
+(radii); seconds for `mesh`. The cohort (the first N files in name order, all 42 by default) is given as its
 median tree and its worst, with the trees that cross themselves; `--cohort-rows` lists every tree.
 """
 import argparse
@@ -44,9 +46,11 @@ COLUMNS = [("sections", "{:,.0f}", max), ("triangles", "{:,.0f}", max), ("topolo
            ("radius p95 %", "{:.1f}", max), ("axis missing (radii)", "{:.1f}", max), ("s", "{:.2f}", max)]
 
 
-def measure(cli, path, method, work, extra=()):
-    out, stats = work / "out.ply", work / "stats.json"
+def measure(cli, path, method, work, extra=(), against="moved"):
+    out, stats, moved = work / "out.ply", work / "stats.json", work / "moved.vtk"
     command = [cli, "mesh", str(path), "-o", str(out), "--stats-json", str(stats), *extra]
+    if against == "moved":
+        command += ["--centerline-out", str(moved)]
     if method == "uniform":
         command += ["--method", "uniform"]
     start = time.perf_counter()
@@ -55,7 +59,8 @@ def measure(cli, path, method, work, extra=()):
         raise RuntimeError(" ".join(command) + " failed")
     seconds = time.perf_counter() - start
     s = json.loads(stats.read_text())
-    checked = subprocess.run([cli, "check", str(out), "--centerline", str(path), "--json"],
+    tubes = moved if against == "moved" else path
+    checked = subprocess.run([cli, "check", str(out), "--centerline", str(tubes), "--json"],
                              capture_output=True, text=True)
     if checked.returncode not in (0, 2):  # 2: the surface fails the check (its figures say where)
         raise RuntimeError(f"vesselmesh check {out} failed: {checked.stderr}")
@@ -99,6 +104,8 @@ def main():
     parser.add_argument("--cohort-rows", action="store_true", help="a row for every tree of the cohort")
     parser.add_argument("--method", choices=["default", "uniform", "both"], default="default")
     parser.add_argument("--sets", choices=["all", "cerebral"], default="all")
+    parser.add_argument("--against", choices=["moved", "file"], default="moved",
+                        help="measure against the tubes as the separate stage left them, or the file's own")
     parser.add_argument("--mesh-args", default="", help="more options for `vesselmesh mesh` (\"--tolerance 0\")")
     parser.add_argument("--cli", default=str(CLI), help="the vesselmesh executable (another build's, to compare)")
     args = parser.parse_args()
@@ -112,10 +119,10 @@ def main():
         work = Path(tmp)
         for method in methods:
             for name in SETS if args.sets == "all" else CEREBRAL:
-                print(row(f"{name} ({method})", measure(args.cli, shared / name, method, work, extra)), flush=True)
+                print(row(f"{name} ({method})", measure(args.cli, shared / name, method, work, extra, args.against)), flush=True)
             rows = []
             for path in cohort:
-                rows.append(measure(args.cli, path, method, work, extra) | {"_name": path.stem.replace("records", "")})
+                rows.append(measure(args.cli, path, method, work, extra, args.against) | {"_name": path.stem.replace("records", "")})
                 if args.cohort_rows:
                     print(row(f"brava-records/{path.name} ({method})", rows[-1]), flush=True)
             if rows:

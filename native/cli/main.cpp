@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
   synth->add_option("--seed", synth_options.seed, "random seed (same seed, same network)");
   synth->add_flag("--binary", binary, "write binary VTK (smaller and faster for large networks)");
 
-  std::string mesh_in, mesh_out, stats_file;
+  std::string mesh_in, mesh_out, stats_file, centerline_out;
   MeshOptions mesh_options;
   CLI::App* mesh = app.add_subcommand("mesh", "Build the vessel surface of a centerline");
   mesh->add_option("IN", mesh_in, "centerline file")->required();
@@ -190,6 +190,9 @@ int main(int argc, char** argv) {
   mesh->add_option("--caps", mesh_options.caps, "terminal ends")
       ->transform(CLI::CheckedTransformer(caps_names()));
   mesh->add_option("--stats-json", stats_file, "write counts and per-stage times here");
+  mesh->add_option("--centerline-out", centerline_out,
+                   "write the centerline the surface follows here (legacy VTK): the input with its crossing "
+                   "vessels moved apart, as the separate stage left it; for vesselmesh check --centerline");
   mesh->add_option("--crossings", mesh_options.crossings,
                    "vessels whose tubes cross away from a joint: move them apart (separate) or keep them")
       ->transform(CLI::CheckedTransformer(crossings_names()));
@@ -239,6 +242,8 @@ int main(int argc, char** argv) {
       const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options), mesh_in);
       const MeshResult result = mesh_centerline(graph, mesh_options);
       write_mesh(result.mesh, mesh_out);
+      if (!centerline_out.empty())
+        write_centerline_vtk(centerline_data(result.separated ? *result.separated : graph), centerline_out, false);
       const Verification& v = result.verification;
       std::cerr << "wrote " << mesh_out << ": " << result.mesh.vertices.size() << " vertices, "
                 << result.mesh.faces.size() << " triangles";

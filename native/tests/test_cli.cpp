@@ -207,6 +207,29 @@ TEST(Cli, MeshMovesCrossingVesselsApartUnlessToldToKeepThem) {
   EXPECT_EQ(kept["stages"].front()["stage"], "tile");
 }
 
+TEST(Cli, MeshWritesTheCenterlineItsSurfaceFollowsForCheck) {
+  // Checked against the centerline as the separate stage left it, the surface lies on its tubes; against
+  // the file's, the vessels it moved apart count as off them.
+  const std::string in = vesselmesh::test::test_data("crossing.swc");
+  const std::string out = vesselmesh::test::temp_path("m.ply"), moved = vesselmesh::test::temp_path("moved.vtk");
+  const CliRun run = run_cli("mesh '" + in + "' -o '" + out + "' --centerline-out '" + moved + "'");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto fidelity = [&](const std::string& centerline) {
+    const CliRun checked = run_cli("check '" + out + "' --centerline '" + centerline + "' --json");
+    EXPECT_EQ(checked.status, 0) << checked.output;
+    return nlohmann::json::parse(checked.output)["fidelity"];
+  };
+  const nlohmann::json as_moved = fidelity(moved), as_filed = fidelity(in);
+  EXPECT_EQ(as_moved["area_off_tubes"], 0.0);
+  EXPECT_GT(as_filed["area_off_tubes"], 0.1);
+  EXPECT_LT(as_moved["abs_relative_error"]["p95"], 0.03);
+  // The same vessels, with the points added round where they crossed.
+  const nlohmann::json a = info_json(moved), b = info_json(in);
+  EXPECT_EQ(a["components"], b["components"]);
+  EXPECT_EQ(a["branches"], b["branches"]);
+  EXPECT_GT(a["points"], b["points"]);
+}
+
 TEST(Cli, MeshRejectsUnknownMethodsAndOutOfRangeOptions) {
   const std::string in = vesselmesh::test::test_data("bifurcation.swc");
   for (const char* options : {"--method sideways", "--measure colour", "--threshold 1.5", "--angle 200",

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -229,5 +231,43 @@ TEST(Graph, PointsThatMergeInAChainLeavingNoEdgeAreRefusedNamingTheSource) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("chain.swc: every edge joins points that merge"), std::string::npos)
         << e.what();
+  }
+}
+
+// Written out (as `mesh --centerline-out` does) and read back, a graph is the same graph: the same edges
+// between the same places with the same radii at their ends, where a branch starts thinner from a
+// duplicated joint point (a copy per radius), and where the radius is per edge.
+TEST(Graph, CenterlineDataGivesTheSameGraphBack) {
+  CenterlineData duplicated = y_shape();
+  duplicated.points.push_back({10, 0, 0});  // the thin branch starts from its own copy of the joint
+  duplicated.radius.push_back(0.5);
+  duplicated.edges[2] = {4, 3};
+  CenterlineData per_edge = y_shape();
+  per_edge.radius.clear();
+  per_edge.edge_radius = {2.0, 1.5, 0.5};
+  for (const CenterlineData& d : {duplicated, per_edge}) {
+    const CenterlineGraph g = build_graph(d);
+    const CenterlineGraph back = build_graph(centerline_data(g));
+    EXPECT_EQ(back.radius_per_edge, g.radius_per_edge);
+    ASSERT_EQ(back.edges.size(), g.edges.size());
+    // Edge by edge, as (end, radius) pairs in order of position.
+    auto ends = [](const CenterlineGraph& h) {
+      std::vector<std::array<double, 8>> out;
+      for (std::size_t e = 0; e < h.edges.size(); ++e) {
+        std::array<std::pair<Vec3, double>, 2> end = {std::pair{h.points[h.edges[e][0]], h.end_radius[e][0]},
+                                                     std::pair{h.points[h.edges[e][1]], h.end_radius[e][1]}};
+        auto less = [](const auto& a, const auto& b) {
+          return std::lexicographical_compare(a.first.data(), a.first.data() + 3, b.first.data(), b.first.data() + 3);
+        };
+        if (less(end[1], end[0])) std::swap(end[0], end[1]);
+        out.push_back({end[0].first.x(), end[0].first.y(), end[0].first.z(), end[0].second, end[1].first.x(),
+                       end[1].first.y(), end[1].first.z(), end[1].second});
+      }
+      std::sort(out.begin(), out.end());
+      return out;
+    };
+    EXPECT_EQ(ends(back), ends(g));
+    EXPECT_EQ(back.radius, g.radius);
+    EXPECT_EQ(back.joints(), 1);
   }
 }

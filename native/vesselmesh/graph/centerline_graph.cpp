@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
+#include <utility>
 
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/union_find.hpp"
@@ -267,6 +268,32 @@ int64_t CenterlineGraph::terminals() const {
 int32_t CenterlineGraph::max_degree() const {
   int32_t d = 0;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v) d = std::max(d, degree(static_cast<int32_t>(v)));
+  return d;
+}
+
+CenterlineData centerline_data(const CenterlineGraph& g) {
+  CenterlineData d;
+  d.edges.reserve(g.edges.size());
+  if (g.radius_per_edge) {
+    d.points = g.points;
+    d.edges = g.edges;
+    for (const auto& r : g.end_radius) d.edge_radius.push_back(r[0]);
+    return d;
+  }
+  d.points.reserve(g.points.size());
+  d.radius.reserve(g.points.size());
+  // Per graph point, its copies so far: (radius, index in d). Mostly one, a joint's few at most.
+  std::vector<std::vector<std::pair<double, int32_t>>> copies(g.points.size());
+  auto copy_of = [&](int32_t v, double r) {
+    for (const auto& [radius, index] : copies[v])
+      if (radius == r) return index;
+    d.points.push_back(g.points[v]);
+    d.radius.push_back(r);
+    copies[v].emplace_back(r, static_cast<int32_t>(d.points.size()) - 1);
+    return copies[v].back().second;
+  };
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
+    d.edges.push_back({copy_of(g.edges[e][0], g.end_radius[e][0]), copy_of(g.edges[e][1], g.end_radius[e][1])});
   return d;
 }
 

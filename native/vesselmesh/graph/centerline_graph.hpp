@@ -66,4 +66,10 @@ constexpr double kCoincidentFraction = 1e-6;
 /// coincident points have merged (points each within a millionth of a radius of the next, all along).
 CenterlineGraph build_graph(const CenterlineData& data, const std::string& source = "centerline");
 
+/// `g` as a file gives a centerline, for writing (write/centerline_vtk.hpp): its edges, the radius per edge
+/// where the input gave it so, else per point, a point given once for each radius the ends of its edges
+/// have (coincident copies where a branch starts thinner from a joint, which build_graph merges back with
+/// the same radii at the same ends). Without roots: a file's root is not kept apart in the graph.
+CenterlineData centerline_data(const CenterlineGraph& g);
+
 }  // namespace vesselmesh
