@@ -99,6 +99,16 @@ def test_check_surface_stores_the_checkers_report_on_the_surface(project_data):
     assert report["input_overlaps"] == []
 
 
+def test_check_surface_measures_it_against_the_vessels_as_moved_apart(project_data):
+    """The surface follows the crossing vessels moved apart, and the check measures it against them: the
+    moves are no error (against the file's tubes, 16 % of crossing.swc's surface lies off them)."""
+    _, surface = import_file(project_data / "crossing.swc")
+    assert bpy.ops.vesselmesh.check() == {"FINISHED"}
+    fidelity = json.loads(surface.vesselmesh.stats)["check"]["fidelity"]
+    assert fidelity["area_off_tubes"] < 0.01
+    assert fidelity["abs_relative_error"]["p95"] < 0.05
+
+
 def test_check_surface_says_where_the_centerlines_tubes_overlap(tmp_path):
     """A vessel that turns back across its own start, three times thinner there: kept as it is, the surface's
     crossings are where the tubes overlap, and the report says where; moved apart, the surface crosses

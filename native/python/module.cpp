@@ -21,6 +21,7 @@
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/separate/separate.hpp"
 #include "vesselmesh/summary.hpp"
 #include "vesselmesh/synth/synth.hpp"
 
@@ -326,6 +327,20 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "ValueError for options out of range. stats['verified'] is the surface's own check ('auto': closed\n"
       "manifold, and crossings up to a million triangles; 'full'; 'topology'): its 'problem' is empty when\n"
       "the surface passes, else says what is wrong.");
+
+  m.def(
+      "separate",
+      [](const CenterlineGraph& graph) -> py::object {
+        Separation s;
+        {
+          py::gil_scoped_release release;
+          s = separate_crossings(graph, RoundCones(graph));
+        }
+        return s.moved_points > 0 ? py::cast(std::move(s.graph)) : py::none();
+      },
+      py::arg("graph"),
+      "The centerline with its crossing vessels moved apart, the one mesh(graph) builds round by default\n"
+      "(its result's 'centerline'), or None where no vessel moves: what check() measures a surface against.");
 
   m.def(
       "check",

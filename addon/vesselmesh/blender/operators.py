@@ -309,7 +309,9 @@ class VESSELMESH_OT_check(bpy.types.Operator):
             graph = meshing.centerline_graph(**mesh_data.read_centerline(centerline,
                                                                          context.evaluated_depsgraph_get()),
                                              default_radius=settings.default_radius, smooth=settings.smooth)
-            report = core().check(*mesh_data.triangles(surface.data), graph)
+            # The surface follows the centerline with its crossing vessels moved apart: measured against that.
+            tubes = (core().separate(graph) if settings.crossings == "separate" else None) or graph
+            report = core().check(*mesh_data.triangles(surface.data), tubes)
         except (ValueError, RuntimeError) as error:
             self.report({"ERROR"}, f"{centerline.name}: {error}")
             return {"CANCELLED"}

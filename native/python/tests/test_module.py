@@ -199,6 +199,15 @@ def test_the_centerline_the_surface_follows_comes_back_where_vessels_were_moved(
     assert vm.mesh(vm.Graph.read(str(project_data / "bifurcation.swc")), levels=1)["centerline"] is None
 
 
+def test_separate_gives_the_centerline_mesh_builds_round(project_data):
+    graph = vm.Graph.read(str(project_data / "crossing.swc"))
+    moved = vm.separate(graph)
+    built = vm.mesh(graph, levels=0)["centerline"]
+    assert np.array_equal(moved.points, built.points)
+    assert np.array_equal(moved.edges, built.edges)
+    assert vm.separate(vm.Graph.read(str(project_data / "bifurcation.swc"))) is None
+
+
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
                                     dict(angle=-1.0), dict(fit="outward"), dict(crossings="merge")])
