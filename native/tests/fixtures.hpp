@@ -389,6 +389,24 @@ inline CenterlineData child_traced_back_along_its_parent(double scale) {
   return d;
 }
 
+/// A thin branch wavering out of a fat vessel, as brava-records BH0002 and BH0014 have them: a trunk of
+/// radius 1.74 along +z into a joint at the origin and on at 1.24, and a branch of radius 0.45 from its own
+/// copy of the joint point (the tracing's duplicated point), out 2.3 at 45° from the trunk, back to 1.8
+/// from the joint 15° further round and across, then on 8 in the first direction.
+inline CenterlineData thin_branch_wavering_out_of_a_fat_vessel(double scale) {
+  CenterlineData d = start(scale * Vec3(0, 0, -6), 1.74 * scale);
+  const int32_t joint = run(d, 0, Vec3::Zero(), 5, 1.74 * scale);
+  d.radius[joint] = 1.24 * scale;
+  run(d, joint, scale * Vec3(0, 0, 6), 5, 1.24 * scale);
+  d.points.push_back(Vec3::Zero());
+  d.radius.push_back(0.45 * scale);
+  const Vec3 out = dir(45), back = dir(60, 90);
+  int32_t p = run(d, static_cast<int32_t>(d.points.size()) - 1, 2.3 * scale * out, 1, 0.45 * scale);
+  p = run(d, p, 1.8 * scale * back, 1, 0.45 * scale);
+  run(d, p, scale * (1.8 * back + 8 * out), 6, 0.45 * scale);
+  return d;
+}
+
 /// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
 /// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
 /// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from
