@@ -243,7 +243,7 @@ TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
 
 TEST(Pipeline, BentTubeKeepsItsRadiusRoundTheBend) {
   // Loop's limit cuts a bend like a B-spline its control polygon, and the sections, which follow the
-  // smoothed tangent, lean against a coarse polyline: both are compensated (tile/base_mesh.cpp).
+  // smoothed tangent, lean against a coarse polyline: both are compensated (tile/tubes.cpp).
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::bend(2.0, scale));
     const FidelityReport f = radius_fidelity(mesh_at(g, 2).mesh, g);
