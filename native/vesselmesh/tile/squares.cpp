@@ -107,14 +107,12 @@ void Tiler::place_squares(const Patch& p, int attempt) {
 }
 
 void Tiler::push_squares(const Patch& p, int attempt) {
-  // Squares pushed this far from the joint (out of the widest tube's reach round it) may tilt.
-  double widest = 0;
+  double widest = 0;  // the patch's widest branch at the joint
   for (int32_t i : p.ends) {
     const End& e = ends_[i];
     if (kind_[e.branch] != Kind::tunnel)
       widest = std::max(widest, curves_[e.branch].radius_at(e.at_start ? 0 : curves_[e.branch].length()));
   }
-  const double tilt_from = kTiltFrom * scale() * widest;
   for (int32_t i : p.ends) {
     End& e = ends_[i];
     const BranchCurve& c = curves_[e.branch];
@@ -152,6 +150,10 @@ void Tiler::push_squares(const Patch& p, int attempt) {
         e.tilted = false;
         if ((overlap = intrusion(e, p)) <= 0) continue;
       }
+      // Squares pushed this far from the joint may tilt: out of the widest tube's reach round it, or, for a
+      // branch under half as wide, out of its own (kTiltFrom).
+      const double tilt_from =
+          kTiltFrom * scale() * (e.square.radius < 0.5 * widest ? e.square.radius : widest);
       if (kind_[e.branch] == Kind::tube && e.t >= tilt_from && tilt_square(e, p)) continue;
       // On a straight branch, moving the square by the intrusion clears it; bends take more steps.
       const double length = travel(e);

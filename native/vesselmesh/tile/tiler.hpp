@@ -25,7 +25,12 @@ constexpr int kSharedTilts = 3;
 constexpr int kSharedTries = 4;
 
 /// A free square pushed further from its joint than this many corner radii of the patch's widest branch
-/// may tilt to clear the other squares (see tilt_square).
+/// may tilt to clear the other squares (see tilt_square); the square of a branch under half as wide, this
+/// many of its own. Counted in the widest branch's radii, a thin branch that leaves a fat vessel at a small
+/// angle had its square pushed on along it, out of the fat tube, until the fat vessel's square stood past
+/// it, and the hull of the two was a web (fixture thin_branch_wavering_out_of_a_fat_vessel: 1.3 to 1.5
+/// radii off the tubes; 0.6 to 0.9 so). Counted in their own radii, squares about as wide as the widest
+/// tilted close to the joint and folded the tube beside them (vesselgraph-demo crossed itself).
 constexpr double kTiltFrom = 2;
 
 /// A square held back by the square beside it is tried at this many steps along its push, less one
