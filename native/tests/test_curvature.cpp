@@ -472,6 +472,26 @@ TEST(Curvature, VertexInNoFaceGetsZerosAndAnEmptyMeshNothing) {
   expect_valid(estimate_curvature(TriMesh{}), 0, "empty mesh");
 }
 
+TEST(Curvature, OnlyTheFlaggedVerticesAreFittedAndEachAsItWouldBeAlone) {
+  const TriMesh m = icosphere(2, 3.0);
+  std::vector<char> fitted(m.vertices.size());
+  for (std::size_t v = 0; v < fitted.size(); ++v) fitted[v] = v % 3 == 0;
+  const VertexCurvature all = estimate_curvature(m), some = estimate_curvature(m, fitted);
+  expect_valid(some, m.vertices.size(), "every third vertex");
+  for (std::size_t v = 0; v < fitted.size(); ++v) {
+    if (fitted[v]) {
+      EXPECT_EQ(some.k1[v], all.k1[v]) << v;
+      EXPECT_EQ(some.k2[v], all.k2[v]) << v;
+      EXPECT_EQ(some.dir1[v], all.dir1[v]) << v;
+    } else {
+      EXPECT_EQ(some.k1[v], 0.0) << v;
+      EXPECT_EQ(some.mean[v], 0.0) << v;
+      EXPECT_TRUE(some.dir1[v].isZero()) << v;
+    }
+  }
+  EXPECT_THROW(estimate_curvature(m, std::vector<char>(m.vertices.size() - 1, 1)), std::invalid_argument);
+}
+
 TEST(Curvature, FaceWithVertexIndexOutOfRangeThrows) {
   TriMesh m;
   m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fixtures.hpp"
+#include "vesselmesh/curvature/tube_curvature.hpp"
 #include "vesselmesh/pipeline.hpp"
 
 using namespace vesselmesh;
@@ -173,4 +174,24 @@ TEST(TubeCurvature, ForkVesselsAwayFromTheirJointAreStraightTubes) {
     ASSERT_GT(h.size(), 40u);
     EXPECT_LE(percentile(h, 95), 0.05) << "scale " << scale;
   }
+}
+
+TEST(TubeCurvature, OnlyVerticesNotWhollyOnATubeNeedTheFitAndTheOthersTakeTheTubesAlone) {
+  TubeCurvature t;
+  t.weight = {0.0, 0.5, 1 - 1e-7, 1.0};  // subdivision's float weights sum to 1 only up to rounding
+  t.around.assign(4, 2.0);
+  t.along.assign(4, 0.0);
+  t.around_dir.assign(4, Vec3::UnitX());
+  t.along_dir.assign(4, Vec3::UnitZ());
+  EXPECT_EQ(needs_fit(t), (std::vector<char>{1, 1, 0, 0}));
+  EXPECT_TRUE(needs_fit(TubeCurvature{}).empty());
+  VertexCurvature c;
+  for (auto* values : {&c.k1, &c.k2, &c.mean, &c.gaussian, &c.rms}) values->assign(4, 0.0);  // unfitted
+  c.dir1.assign(4, Vec3::Zero());
+  c.dir2.assign(4, Vec3::Zero());
+  blend_tube_curvature(c, t);
+  EXPECT_EQ(c.k1[0], 0.0);
+  EXPECT_DOUBLE_EQ(c.k1[1], 1.0);
+  EXPECT_EQ(c.k1[2], 2.0);
+  EXPECT_EQ(c.mean[3], 1.0);
 }

@@ -167,7 +167,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   }
   if (options.curvature) {
     start = Clock::now();
-    VertexCurvature curvature = estimate_curvature(result.mesh);
+    VertexCurvature curvature = estimate_curvature(result.mesh, needs_fit(tubes));
     blend_tube_curvature(curvature, tubes);
     for (VertexProperty& p : curvature_properties(curvature)) result.mesh.vertex_properties.push_back(std::move(p));
     if (!cones) cones.emplace(*centerline);

@@ -115,8 +115,11 @@ void store(const Eigen::Matrix<double, 8, 1>& c, const Vec3& e1, const Vec3& e2,
 
 }  // namespace
 
-VertexCurvature estimate_curvature(const TriMesh& mesh) {
+VertexCurvature estimate_curvature(const TriMesh& mesh, const std::vector<char>& fitted) {
   const size_t nv = mesh.vertices.size();
+  if (!fitted.empty() && fitted.size() != nv)
+    throw std::invalid_argument("estimate_curvature: " + std::to_string(fitted.size()) + " flags for " +
+                                std::to_string(nv) + " vertices");
   const Csr faces = vertex_faces(mesh);
   const Csr neighbours = vertex_neighbours(mesh, faces);
   const std::vector<Vec3> normals = vertex_normals(mesh);
@@ -134,7 +137,7 @@ VertexCurvature estimate_curvature(const TriMesh& mesh) {
     for (size_t vi = begin; vi < end; ++vi) {
       const auto v = static_cast<int32_t>(vi);
       const Vec3& n = normals[v];
-      if (n.isZero()) continue;
+      if (n.isZero() || (!fitted.empty() && !fitted[vi])) continue;
       // The fit is invariant under rotations about n (its monomials span a rotation-invariant space), so any
       // tangent basis will do.
       const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);

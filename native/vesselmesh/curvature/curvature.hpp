@@ -38,8 +38,11 @@ struct VertexCurvature {
 /// gets zero curvatures, with directions an arbitrary tangent basis; a vertex in no non-degenerate face has
 /// no normal and gets zero directions as well. Closed and open meshes alike; O(V + F) apart from the fits.
 ///
-/// Throws std::invalid_argument for a face with a vertex index out of range.
-VertexCurvature estimate_curvature(const TriMesh& mesh);
+/// `fitted`, when not empty (V flags), names the vertices to fit; the others get zero curvatures and
+/// directions (the pipeline's tube vertices, whose curvature is their tube's: tube_curvature.hpp).
+///
+/// Throws std::invalid_argument for a face with a vertex index out of range, or `fitted` of another size.
+VertexCurvature estimate_curvature(const TriMesh& mesh, const std::vector<char>& fitted = {});
 
 /// k1, k2, mean, gaussian and rms as float vertex properties of those names (what PLY files and the
 /// Python module carry).

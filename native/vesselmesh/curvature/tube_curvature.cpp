@@ -47,11 +47,25 @@ TubeCurvature tube_curvature(const TriMesh& mesh) {
   return t;
 }
 
+namespace {
+
+/// A tube weight this close to 1 is 1: subdivision's masks sum to 1 only up to rounding (the weights are
+/// floats).
+bool wholly_on_tube(double weight) { return weight >= 1 - 1e-6; }
+
+}  // namespace
+
+std::vector<char> needs_fit(const TubeCurvature& t) {
+  std::vector<char> fit(t.weight.size());
+  for (std::size_t v = 0; v < fit.size(); ++v) fit[v] = !wholly_on_tube(t.weight[v]);
+  return fit;
+}
+
 void blend_tube_curvature(VertexCurvature& c, const TubeCurvature& t) {
   if (t.weight.empty()) return;
   parallel_for(t.weight.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      const double w = t.weight[v];
+      const double w = wholly_on_tube(t.weight[v]) ? 1.0 : t.weight[v];
       if (!(w > 0)) continue;
       const bool around_first = t.around[v] >= t.along[v];
       const double k1 = around_first ? t.around[v] : t.along[v], k2 = around_first ? t.along[v] : t.around[v];

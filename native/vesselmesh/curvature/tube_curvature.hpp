@@ -27,9 +27,14 @@ struct TubeCurvature {
 /// call it before round_tubes takes them off. Empty for a mesh without them.
 TubeCurvature tube_curvature(const TriMesh& mesh);
 
+/// Which vertices the blend reads a fit for (V flags; empty for an empty `tube`): those not wholly on a
+/// tube. Along the tubes, most of a surface's vertices, the fit would be thrown away (estimate_curvature's
+/// `fitted`).
+std::vector<char> needs_fit(const TubeCurvature& tube);
+
 /// Each vertex's principal curvatures become w·(the tube's) + (1 − w)·(the fit's), with w its tube
-/// weight, and the measures made of them follow; its directions are the tube's where w ≥ ½. An empty
-/// `tube` changes nothing.
+/// weight (1 where needs_fit says no fit is needed), and the measures made of them follow; its directions
+/// are the tube's where w ≥ ½. An empty `tube` changes nothing.
 void blend_tube_curvature(VertexCurvature& curvature, const TubeCurvature& tube);
 
 }  // namespace vesselmesh
