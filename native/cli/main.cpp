@@ -258,6 +258,10 @@ int main(int argc, char** argv) {
       if (v.problem().empty() && v.topology.genus != v.loops)
         std::cerr << "note: the centerline has " << v.loops << " loops and the surface genus "
                   << v.topology.genus << " (docs/pipeline.md, tile: where a loop closes)\n";
+      if (result.hidden_terminals > 0)
+        std::cerr << "note: " << result.hidden_terminals
+                  << " terminal branches lie wholly inside other vessels' tubes and were left out: the vessel's "
+                     "shape is the same (docs/pipeline.md, separate)\n";
       if (result.tangle)
         std::cerr << "note: " << result.crossings
                   << " pairs of crossing vessels lie in a tangle too dense to part, and were left as they are "

@@ -434,6 +434,33 @@ inline CenterlineData crowded_joints(double scale) {
   return d;
 }
 
+/// A random tree (native/python/tests/test_random_trees.py, seed 2, the 438th) of 20 points, radii 0.09 to
+/// 0.58, three of whose terminal branches lie wholly inside the tubes of others (a thin twig from a point
+/// 0.04 radii from its joint, inside the fatter vessel there): a surface that follows their tubes as well
+/// crossed the one round them (7 and 21 pairs at levels 1 and 2).
+inline CenterlineData hidden_twigs(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 0.4797 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{-0.7808, -1.6110, -0.4976}, 0.4919, 0},  {{-0.5156, -2.8314, -0.7196}, 0.3736, 0},
+      {{-0.7617, -1.5725, -0.5092}, 0.5777, 1},  {{-0.5274, -2.8766, -0.7274}, 0.2265, 2},
+      {{-0.8100, -4.6431, -3.2181}, 0.4500, 1},  {{-0.8177, -4.6812, -3.2482}, 0.3688, 5},
+      {{-0.7668, -4.6801, -3.2503}, 0.2677, 6},  {{-1.1728, -3.9423, -0.4658}, 0.2958, 2},
+      {{-0.8755, -4.9159, -3.3670}, 0.4308, 6},  {{-0.9629, -5.5287, -3.7516}, 0.4323, 9},
+      {{-0.4051, -0.7128, -0.2617}, 0.5301, 0},  {{-0.7181, -4.6821, -3.1967}, 0.1735, 7},
+      {{0.0201, -5.6653, -2.8302}, 0.1883, 12},  {{0.1327, -6.3886, -3.2167}, 0.1475, 13},
+      {{0.1474, -6.7956, -3.3914}, 0.0920, 14},  {{0.0624, -9.3417, -4.3452}, 0.1038, 14},
+      {{-0.8254, -5.1527, -3.4583}, 0.2987, 9},  {{-0.7786, -5.4722, -3.6110}, 0.1963, 17},
+      {{-0.6359, -13.1443, -5.6967}, 0.0984, 16},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
+
 struct Named {
   std::string name;
   CenterlineData (*make)(double scale);

@@ -232,6 +232,23 @@ TEST(Pipeline, CrowdedJointsGetNoFoldedTubeBetweenThem) {
   }
 }
 
+// Not met before terminal branches wholly inside other vessels' tubes were dropped (separate/hidden.hpp):
+// 7 and 21 crossing pairs at levels 1 and 2. Their tubes add nothing to the union, which stays.
+TEST(Pipeline, TwigsHiddenInsideOtherVesselsAreDroppedAndTheSurfaceIsUncrossed) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::hidden_twigs(scale));
+    for (int levels = 0; levels <= 2; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const MeshResult r = mesh_at(g, levels);
+      EXPECT_EQ(r.hidden_terminals, 3) << what;
+      ASSERT_TRUE(r.separated) << what;  // the centerline without them
+      expect_closed_surface(r.mesh, g, what);
+      EXPECT_EQ(find_self_intersections(r.mesh, &g).pairs, 0) << what;
+      EXPECT_EQ(mesh_at(g, levels, Caps::flat, Refinement::curvature, Crossings::keep).hidden_terminals, 0) << what;
+    }
+  }
+}
+
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
   // A straight tube, away from its caps, sits at the centerline radius at every offered level.
   for (double scale : {1e-3, 1.0, 1e3}) {

@@ -7,6 +7,7 @@
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/pipeline.hpp"
+#include "vesselmesh/separate/hidden.hpp"
 #include "vesselmesh/separate/separate.hpp"
 
 using namespace vesselmesh;
@@ -188,5 +189,30 @@ TEST(Separate, VesselsOnOneLineGetNoLoopFromThePointsAddedAlongThem) {
     const MeshResult r = mesh_centerline(g, MeshOptions());
     EXPECT_EQ(r.verification.topology.genus, 0) << scale;
     EXPECT_EQ(r.verification.problem(), "") << scale;
+  }
+}
+
+// A trunk of radius 1 with a twig inside it, a branch to a joint inside it whose two twigs are inside it
+// too (once they are dropped, the branch is a twig), and a branch that leaves it: the twigs and the branch
+// to them are dropped, in two rounds, and the rest stays as it is.
+TEST(Separate, TerminalBranchesHiddenInsideOtherTubesAreDroppedRoundByRound) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    CenterlineData d = fixtures::start(scale * Vec3(0, 0, -5), scale);
+    int32_t below = fixtures::run(d, 0, scale * Vec3(0, 0, -2.5), 1, scale);
+    const int32_t joint = fixtures::run(d, below, Vec3::Zero(), 1, scale);
+    fixtures::run(d, joint, scale * Vec3(0, 0, 5), 2, scale);
+    fixtures::run(d, joint, scale * Vec3(0, 0.45, 1.2), 2, 0.3 * scale);                 // a twig
+    const int32_t inner = fixtures::run(d, below, scale * Vec3(0.2, 0, -2.0), 1, 0.4 * scale);
+    fixtures::run(d, inner, scale * Vec3(0.3, 0.1, -1.8), 1, 0.3 * scale);                // twigs of a twig
+    fixtures::run(d, inner, scale * Vec3(0.1, 0.3, -2.2), 1, 0.3 * scale);
+    fixtures::run(d, joint, scale * Vec3(0, 1.8, 0.6), 2, 0.3 * scale);                  // out of the trunk
+    const CenterlineGraph g = build_graph(d);
+    const HiddenTerminals h = drop_hidden_terminals(g, RoundCones(g));
+    EXPECT_EQ(h.dropped, 4) << scale;
+    EXPECT_EQ(h.graph.edges.size(), 6u) << scale;  // the trunk's four and the branch that leaves it
+    EXPECT_EQ(h.graph.components, 1) << scale;
+    EXPECT_EQ(h.graph.branches.size(), 3u) << scale;
+    // Nothing is hidden in the rest.
+    EXPECT_EQ(drop_hidden_terminals(h.graph, RoundCones(h.graph)).dropped, 0) << scale;
   }
 }

@@ -11,6 +11,7 @@
 #include "vesselmesh/curvature/tube_curvature.hpp"
 #include "vesselmesh/error.hpp"
 #include "vesselmesh/round/round.hpp"
+#include "vesselmesh/separate/hidden.hpp"
 #include "vesselmesh/tile/octagons.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
@@ -96,9 +97,13 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   // the separate stage moved the centerline.
   std::optional<RoundCones> cones;
   const CenterlineGraph* centerline = &graph;
+  HiddenTerminals hidden;
   Separation separation;
   if (options.crossings == Crossings::separate) {
-    separation = separate_crossings(graph, cones.emplace(graph));
+    hidden = drop_hidden_terminals(graph, cones.emplace(graph));
+    result.hidden_terminals = hidden.dropped;
+    if (hidden.dropped > 0) centerline = &hidden.graph, cones.emplace(hidden.graph);
+    separation = separate_crossings(*centerline, *cones);
     result.crossings = separation.crossings;
     result.separated_points = separation.moved_points;
     result.largest_separation = separation.largest_move;
@@ -180,7 +185,10 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.verification = verify(result.mesh, *centerline, options.verify);
   record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
-  if (separation.moved_points > 0) result.separated = std::move(separation.graph);
+  if (separation.moved_points > 0)
+    result.separated = std::move(separation.graph);
+  else if (hidden.dropped > 0)
+    result.separated = std::move(hidden.graph);
   return result;
 }
 
@@ -193,6 +201,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["absorbed_branches"] = result.absorbed_branches;
   j["tunnels"] = result.tunnels;
   j["crossings"] = result.crossings;
+  j["hidden_terminals"] = result.hidden_terminals;
   j["separated_points"] = result.separated_points;
   j["largest_separation"] = result.largest_separation;
   j["crossings_left"] = result.crossings_left;

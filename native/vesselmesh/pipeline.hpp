@@ -68,13 +68,14 @@ struct MeshResult {
   std::vector<double> tagged;       ///< per level: the fraction of triangles it tagged for splitting
   std::vector<StageStats> stages;
   int64_t sections = 0, joint_patches = 0, absorbed_branches = 0, tunnels = 0;
+  int64_t hidden_terminals = 0;   ///< terminal branches dropped, hidden in other tubes (separate/hidden.hpp)
   int64_t crossings = 0;          ///< crossing edge pairs in the input (separate/separate.hpp)
   int64_t separated_points = 0;   ///< centerline points the separate stage moved
   double largest_separation = 0;  ///< its largest move, relative to the point's radius
   int64_t crossings_left = 0;     ///< crossing edge pairs it left
   bool tangle = false;            ///< it left them all: too dense to part (Separation::tangle)
   /// The centerline whose tubes the surface follows, where the separate stage moved vessels (with the
-  /// points it added round the crossings); empty when it moved none. Fidelity to the vessels as built is
+  /// points it added round the crossings) or dropped hidden terminal branches; empty when it did neither. Fidelity to the vessels as built is
   /// measured against it, to the file's vessels against the input.
   std::optional<CenterlineGraph> separated;
   int64_t rounded_vertices = 0;   ///< vertices the round stage moved onto their tube's circle

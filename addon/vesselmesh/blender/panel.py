@@ -98,6 +98,8 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
             col.label(text=f"Fails its own check: {verified['problem']}" if verified["problem"] else
                       f"Checked: closed, genus {verified['genus']}"
                       + (", no crossing" if verified["crossings_checked"] and not verified["crossing_pairs"] else ""))
+        if stats.get("hidden_terminals"):
+            col.label(text=f"Twigs wholly inside other vessels left out: {stats['hidden_terminals']:,}")
         if stats.get("separated_points"):
             col.label(text=f"Crossing vessels moved apart: {stats['separated_points']:,} points, "
                            f"up to {stats['largest_separation']:.1f} radii")

@@ -207,6 +207,7 @@ std::vector<ConeDistance> RoundCones::within(const Vec3& p, double margin) const
                 [&](int32_t e) {
                   ConeDistance d = cone_distance(cones_[e], p);
                   d.branch = cones_[e].branch;
+                  d.cone = e;
                   if (d.distance < margin) out.push_back(d);
                 });
   return out;

@@ -35,6 +35,7 @@ struct ConeDistance {
   Vec3 direction;       ///< unit, from the closest surface point towards the point when it is outside (the
                         ///< gradient of the distance)
   int32_t branch = -1;  ///< of the cone (RoundCones::nearest)
+  int32_t cone = -1;    ///< the cone itself (RoundCones::within)
 };
 
 /// The end of a terminal, where the surface is capped rather than round: the terminal point, the axis

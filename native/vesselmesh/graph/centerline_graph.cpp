@@ -271,29 +271,42 @@ int32_t CenterlineGraph::max_degree() const {
   return d;
 }
 
-CenterlineData centerline_data(const CenterlineGraph& g) {
+CenterlineData centerline_data(const CenterlineGraph& g, const std::vector<char>& keep) {
   CenterlineData d;
   d.edges.reserve(g.edges.size());
-  if (g.radius_per_edge) {
-    d.points = g.points;
-    d.edges = g.edges;
-    for (const auto& r : g.end_radius) d.edge_radius.push_back(r[0]);
-    return d;
-  }
-  d.points.reserve(g.points.size());
-  d.radius.reserve(g.points.size());
-  // Per graph point, its copies so far: (radius, index in d). Mostly one, a joint's few at most.
+  auto kept = [&](std::size_t e) { return keep.empty() || keep[e]; };
+  // Per graph point, its copies: (radius, index in d). Per edge radii: one copy, in the graph's order;
+  // per point: one per radius the ends of its edges have, mostly one, a joint's few at most.
   std::vector<std::vector<std::pair<double, int32_t>>> copies(g.points.size());
-  auto copy_of = [&](int32_t v, double r) {
-    for (const auto& [radius, index] : copies[v])
-      if (radius == r) return index;
+  auto add = [&](int32_t v, double r) {
     d.points.push_back(g.points[v]);
-    d.radius.push_back(r);
     copies[v].emplace_back(r, static_cast<int32_t>(d.points.size()) - 1);
     return copies[v].back().second;
   };
-  for (std::size_t e = 0; e < g.edges.size(); ++e)
-    d.edges.push_back({copy_of(g.edges[e][0], g.end_radius[e][0]), copy_of(g.edges[e][1], g.end_radius[e][1])});
+  if (g.radius_per_edge) {
+    std::vector<char> used(g.points.size(), 0);
+    for (std::size_t e = 0; e < g.edges.size(); ++e)
+      if (kept(e)) used[g.edges[e][0]] = used[g.edges[e][1]] = 1;
+    for (std::size_t v = 0; v < g.points.size(); ++v)
+      if (used[v]) add(static_cast<int32_t>(v), 0);
+    for (std::size_t e = 0; e < g.edges.size(); ++e)
+      if (kept(e)) {
+        d.edges.push_back({copies[g.edges[e][0]][0].second, copies[g.edges[e][1]][0].second});
+        d.edge_radius.push_back(g.end_radius[e][0]);
+      }
+  } else {
+    auto copy_of = [&](int32_t v, double r) {
+      for (const auto& [radius, index] : copies[v])
+        if (radius == r) return index;
+      d.radius.push_back(r);
+      return add(v, r);
+    };
+    for (std::size_t e = 0; e < g.edges.size(); ++e)
+      if (kept(e))
+        d.edges.push_back({copy_of(g.edges[e][0], g.end_radius[e][0]), copy_of(g.edges[e][1], g.end_radius[e][1])});
+  }
+  for (int32_t root : g.roots)
+    if (!copies[root].empty()) d.roots.push_back(copies[root].front().second);
   return d;
 }
 

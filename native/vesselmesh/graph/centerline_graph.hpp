@@ -69,7 +69,8 @@ CenterlineGraph build_graph(const CenterlineData& data, const std::string& sourc
 /// `g` as a file gives a centerline, for writing (write/centerline_vtk.hpp): its edges, the radius per edge
 /// where the input gave it so, else per point, a point given once for each radius the ends of its edges
 /// have (coincident copies where a branch starts thinner from a joint, which build_graph merges back with
-/// the same radii at the same ends). Without roots: a file's root is not kept apart in the graph.
-CenterlineData centerline_data(const CenterlineGraph& g);
+/// the same radii at the same ends), and its roots. Only the edges `keep` flags (E flags), when not
+/// empty, with the points they join; a root none of them joins is left out.
+CenterlineData centerline_data(const CenterlineGraph& g, const std::vector<char>& keep = {});
 
 }  // namespace vesselmesh
