@@ -21,6 +21,7 @@
 #include "vesselmesh/option_names.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/read/read.hpp"
+#include "vesselmesh/separate/hidden.hpp"
 #include "vesselmesh/separate/separate.hpp"
 #include "vesselmesh/summary.hpp"
 #include "vesselmesh/synth/synth.hpp"
@@ -331,16 +332,22 @@ PYBIND11_MODULE(vesselmesh_core, m) {
   m.def(
       "separate",
       [](const CenterlineGraph& graph) -> py::object {
+        HiddenTerminals hidden;
         Separation s;
         {
           py::gil_scoped_release release;
-          s = separate_crossings(graph, RoundCones(graph));
+          // As mesh_centerline: the hidden terminal branches go first, then the crossing vessels part.
+          hidden = drop_hidden_terminals(graph, RoundCones(graph));
+          const CenterlineGraph& input = hidden.dropped > 0 ? hidden.graph : graph;
+          s = separate_crossings(input, RoundCones(input));
         }
-        return s.moved_points > 0 ? py::cast(std::move(s.graph)) : py::none();
+        if (s.moved_points > 0) return py::cast(std::move(s.graph));
+        return hidden.dropped > 0 ? py::cast(std::move(hidden.graph)) : py::none();
       },
       py::arg("graph"),
-      "The centerline with its crossing vessels moved apart, the one mesh(graph) builds round by default\n"
-      "(its result's 'centerline'), or None where no vessel moves: what check() measures a surface against.");
+      "The centerline with its crossing vessels moved apart and the terminal branches hidden inside other\n"
+      "vessels' tubes left out, the one mesh(graph) builds round by default (its result's 'centerline'), or\n"
+      "None where it leaves the graph as it is: what check() measures a surface against.");
 
   m.def(
       "check",

@@ -208,6 +208,17 @@ def test_separate_gives_the_centerline_mesh_builds_round(project_data):
     assert vm.separate(vm.Graph.read(str(project_data / "bifurcation.swc"))) is None
 
 
+def test_separate_leaves_out_the_twigs_mesh_leaves_out():
+    # A trunk of radius 1 and a twig wholly inside it: no vessel moves, the twig goes.
+    graph = vm.Graph(np.array([[0, 0, -5], [0, 0, 0], [0, 0, 5], [0, 0.45, 1.2]], float),
+                     np.array([[0, 1], [1, 2], [1, 3]]), radius=np.array([1, 1, 1, 0.3]))
+    left = vm.separate(graph)
+    built = vm.mesh(graph, levels=0)
+    assert built["stats"]["hidden_terminals"] == 1
+    assert len(left.edges) == 2
+    assert np.array_equal(left.points, built["centerline"].points)
+
+
 @pytest.mark.parametrize("kwargs", [dict(sampling="sideways"), dict(caps="round"), dict(levels=7),
                                     dict(method="random"), dict(measure="colour"), dict(threshold=2.0),
                                     dict(angle=-1.0), dict(fit="outward"), dict(crossings="merge")])
