@@ -94,7 +94,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
 
   auto start = Clock::now();
   // The tubes the surface follows, built once for the separate stage and the fit, and again only where
-  // the separate stage moved the centerline.
+  // the separate stage left terminal branches out or moved the centerline.
   std::optional<RoundCones> cones;
   const CenterlineGraph* centerline = &graph;
   HiddenTerminals hidden;
