@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -56,7 +57,16 @@ class Bvh {
     int32_t begin = 0, end = 0;  ///< its items: items_[begin, end)
     int32_t second = -1;         ///< the second child; -1 for a leaf (the first child is the next node)
   };
-  int32_t build(const std::vector<Box>& boxes, const std::vector<Vec3>& centres, int32_t begin, int32_t end);
+  struct BuildInput {
+    const std::vector<Box>& boxes;
+    const std::vector<Vec3>& centres;
+    const std::unordered_map<int32_t, int32_t>& counts;  ///< node_count of every subtree size over kLeafSize
+  };
+  /// Nodes in a subtree of n items (median splits down to leaves of at most kLeafSize), memoised in `counts`.
+  static int32_t node_count(int32_t n, std::unordered_map<int32_t, int32_t>& counts);
+  /// Builds the subtree of items_[begin, end) into nodes_[index...]; its top `split_depth` levels build their
+  /// two halves on two threads.
+  void build(const BuildInput& in, int32_t begin, int32_t end, int32_t index, int split_depth);
   /// One step of the walk over the pairs of items under nodes a and b (a == b: the pairs within a): calls f
   /// on the overlapping pairs of two leaves, or hands `split` the node pairs to go on with.
   template <class F, class Split>

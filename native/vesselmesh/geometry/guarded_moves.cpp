@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <mutex>
 
 #include "vesselmesh/geometry/bvh.hpp"
@@ -47,6 +49,70 @@ std::vector<int32_t> folded(const TriMesh& mesh, const std::vector<Vec3>& moved,
   return out;
 }
 
+/// The cells of a grid over some boxes that any of them covers. Most triangles lie far from every long move:
+/// a look at the few cells a triangle's box covers settles that sooner than a walk down a hierarchy.
+class Occupancy {
+ public:
+  explicit Occupancy(const std::vector<Box>& boxes) {
+    for (const Box& b : boxes) all_.extend(b);
+    if (boxes.empty()) return;
+    // Cells as large as the median box (each box then covers a few), fewer than kMaxCells in all.
+    std::vector<double> sizes;
+    sizes.reserve(boxes.size());
+    for (const Box& b : boxes) sizes.push_back((b.hi - b.lo).maxCoeff());
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    const Vec3 extent = all_.hi - all_.lo;
+    cell_ = std::max(sizes[sizes.size() / 2], extent.maxCoeff() * 1e-6);
+    if (!(cell_ > 0)) cell_ = 1;  // every box a point at one place
+    for (;;) {
+      for (int a = 0; a < 3; ++a) count_[a] = static_cast<int64_t>(extent[a] / cell_) + 1;
+      if (count_[0] * count_[1] * count_[2] <= kMaxCells) break;
+      cell_ *= 1.5;
+    }
+    occupied_.assign(count_[0] * count_[1] * count_[2], 0);
+    for (const Box& b : boxes)
+      visit(b, [&](int64_t c) {
+        occupied_[c] = 1;
+        return false;
+      });
+  }
+
+  /// False when `box` meets no box of the set (true may still mean none).
+  bool may_meet(const Box& box) const {
+    if (occupied_.empty() || !box.overlaps(all_)) return false;
+    return visit(box, [&](int64_t c) { return occupied_[c] != 0; });
+  }
+
+ private:
+  static constexpr int64_t kMaxCells = int64_t{1} << 22;
+  /// Calls f(cell) on the cells `box` covers (within the grid) until f returns true; returns whether it did.
+  template <class F>
+  bool visit(const Box& box, F&& f) const {
+    std::array<int64_t, 3> lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = index(box.lo[a], a);
+      hi[a] = index(box.hi[a], a);
+    }
+    for (int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (f((x * count_[1] + y) * count_[2] + z)) return true;
+    return false;
+  }
+  /// The cell along axis `a` that holds coordinate v (clamped to the grid): monotone in v, so that boxes
+  /// that meet share a cell.
+  int64_t index(double v, int a) const {
+    const double i = std::floor((v - all_.lo[a]) / cell_);
+    if (!(i > 0)) return 0;
+    return i < static_cast<double>(count_[a] - 1) ? static_cast<int64_t>(i) : count_[a] - 1;
+  }
+
+  Box all_;
+  double cell_ = 1;
+  std::array<int64_t, 3> count_ = {0, 0, 0};
+  std::vector<uint8_t> occupied_;
+};
+
 /// Pairs of a triangle with a long move and another triangle that the move may carry it into: their boxes,
 /// each swept from the triangle's place before the fit to after it (every halved move lies in between),
 /// overlap, and they did not cross before the fit (input tubes that overlap cross anyway). Each pair once,
@@ -63,8 +129,8 @@ std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, con
   std::vector<char> is_long(mesh.faces.size(), 0);
   for (int32_t f : long_faces) is_long[f] = 1;
   std::vector<Box> boxes(long_faces.size());
-  Box all;
-  for (std::size_t i = 0; i < long_faces.size(); ++i) all.extend(boxes[i] = swept(mesh.faces[long_faces[i]]));
+  for (std::size_t i = 0; i < long_faces.size(); ++i) boxes[i] = swept(mesh.faces[long_faces[i]]);
+  const Occupancy near_long(boxes);
   const Bvh bvh(boxes);
   std::mutex lock;
   parallel_for(mesh.faces.size(), [&](std::size_t begin, std::size_t end) {
@@ -72,7 +138,7 @@ std::vector<std::array<int32_t, 2>> crossing_candidates(const TriMesh& mesh, con
     for (std::size_t g = begin; g < end; ++g) {
       const Tri& tg = mesh.faces[g];
       const Box box = swept(tg);
-      if (!box.overlaps(all)) continue;
+      if (!near_long.may_meet(box)) continue;
       bvh.search([&](const Box& b) { return b.overlaps(box) ? 0.0 : 1.0; }, 0.0,
                  [&](int32_t i) {
                    const int32_t f = long_faces[i];
