@@ -407,6 +407,31 @@ inline CenterlineData thin_branch_wavering_out_of_a_fat_vessel(double scale) {
   return d;
 }
 
+/// A fat trunk bending through 90° with a side branch from every point, as neuron-hemibrain-da1's
+/// proximal dendrites have them (radius 50 to 90, points 20 to 80 apart, a side branch of half that radius
+/// from nearly every point): radius 1 along +z into the origin, then ten points 0.3 to 0.9 apart, each
+/// turning the trunk 9° further about y and narrowing it by 3 %, each with a side branch of radius 0.35 to
+/// 0.6, 30° to 100° from the trunk's way and 110° further round it than the last, 1.2 out and 4 more; then
+/// 6 on. No two of its joints are far enough apart for a square between them.
+inline CenterlineData fat_trunk_with_a_side_branch_at_every_point(double scale) {
+  CenterlineData d = start(Vec3(0, 0, -6 * scale), scale);
+  int32_t trunk = run(d, 0, Vec3::Zero(), 3, scale);
+  const double step[] = {0.5, 0.3, 0.8, 0.4, 0.9, 0.3, 0.6, 0.5, 0.7, 0.4};
+  const double side_radius[] = {0.55, 0.4, 0.5, 0.35, 0.6, 0.45, 0.5, 0.4, 0.55, 0.35};
+  const double from_trunk[] = {90, 35, 60, 100, 45, 80, 30, 70, 95, 50};
+  Vec3 along = Vec3::UnitZ();
+  for (int i = 0; i < 10; ++i) {
+    const Eigen::AngleAxisd bend((i + 1) * 9 * M_PI / 180, Vec3::UnitY());
+    along = bend * Vec3::UnitZ();
+    trunk = run(d, trunk, d.points[trunk] + step[i] * scale * along, 1, (1 - 0.03 * i) * scale);
+    const Vec3 side = bend * dir(from_trunk[i], 110.0 * i);
+    const int32_t out = run(d, trunk, d.points[trunk] + 1.2 * scale * side, 1, side_radius[i] * scale);
+    run(d, out, d.points[out] + 4 * scale * side, 4, 0.8 * side_radius[i] * scale);
+  }
+  run(d, trunk, d.points[trunk] + 6 * scale * along, 4, 0.7 * scale);
+  return d;
+}
+
 /// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
 /// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
 /// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from

@@ -217,6 +217,36 @@ TEST(Pipeline, ThinBranchWaveringOutOfAFatVesselLeavesNoWeb) {
   }
 }
 
+// A cluster of joints no square parts becomes one patch, the convex hull of all its branches' squares: on
+// a bending fat trunk with a side branch at every point it spans the bend and the side branches' roots,
+// 60 to 68 % of the area over half a radius off the tubes and faces 4.7 to 5.8 radii off at levels 0 to 2
+// (neuron-hemibrain-da1's blobs: 4.5 % of its area, up to 9.6 radii). It is closed and uncrossed all the
+// same.
+TEST(Pipeline, FatTrunkWithASideBranchAtEveryPointIsClosedAndUncrossed) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::fat_trunk_with_a_side_branch_at_every_point(scale));
+    for (int levels = 0; levels <= 2; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const MeshResult r = mesh_at(g, levels);
+      expect_closed_surface(r.mesh, g, what);
+      EXPECT_EQ(find_self_intersections(r.mesh, &g).pairs, 0) << what;
+    }
+  }
+}
+
+// Not met yet: the same surface on its tubes (issue 19's target for neuron-hemibrain-da1, 1 % of the area
+// over half a radius off). Deforming the hull onto the tubes does not get there (docs/pipeline.md,
+// decisions log): the patch must stop being one convex hull. Run with --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_FatTrunkWithASideBranchAtEveryPointFollowsItsTubes) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::fat_trunk_with_a_side_branch_at_every_point(scale));
+    for (int levels = 0; levels <= 2; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      expect_on_its_tubes(mesh_at(g, levels), g, what, 0.01, 3);
+    }
+  }
+}
+
 // Not met before a short tube that no fold-free sections join to its two squares was no tube: it folded
 // between two patches whose squares faced it from sides a right angle apart (9, 24, 61 and 105 crossing
 // pairs at levels 0 to 3; brava-records BH0005 crossed itself so).
