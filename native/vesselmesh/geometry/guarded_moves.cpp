@@ -77,14 +77,19 @@ class Occupancy {
       });
   }
 
-  /// False when `box` meets no box of the set (true may still mean none).
+  /// False when `box` meets no box of the set (true may still mean none, and does for a box over more
+  /// than kMostLooked cells, which the hierarchy answers sooner).
   bool may_meet(const Box& box) const {
     if (occupied_.empty() || !box.overlaps(all_)) return false;
+    int64_t cells = 1;
+    for (int a = 0; a < 3; ++a) cells *= index(box.hi[a], a) - index(box.lo[a], a) + 1;
+    if (cells > kMostLooked) return true;
     return visit(box, [&](int64_t c) { return occupied_[c] != 0; });
   }
 
  private:
   static constexpr int64_t kMaxCells = int64_t{1} << 22;
+  static constexpr int64_t kMostLooked = 64;
   /// Calls f(cell) on the cells `box` covers (within the grid) until f returns true; returns whether it did.
   template <class F>
   bool visit(const Box& box, F&& f) const {
