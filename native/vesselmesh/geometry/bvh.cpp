@@ -41,9 +41,8 @@ Bvh::Bvh(const std::vector<Box>& boxes) {
 }
 
 int32_t Bvh::node_count(int32_t n, std::unordered_map<int32_t, int32_t>& counts) {
-  if (n <= kLeafSize) return 1;
   if (const auto known = counts.find(n); known != counts.end()) return known->second;
-  const int32_t count = 1 + node_count(n / 2, counts) + node_count(n - n / 2, counts);
+  const int32_t count = n <= kLeafSize ? 1 : 1 + node_count(n / 2, counts) + node_count(n - n / 2, counts);
   return counts[n] = count;
 }
 
@@ -63,15 +62,17 @@ void Bvh::build(const BuildInput& in, int32_t begin, int32_t end, int32_t index,
   std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
                    [&](int32_t i, int32_t j) { return in.centres[i][axis] < in.centres[j][axis]; });
   const int32_t first = index + 1;
-  const int32_t second = first + (mid - begin <= kLeafSize ? 1 : in.counts.at(mid - begin));
-  if (split_depth > 0) {
-    std::thread other([&] { build(in, begin, mid, first, split_depth - 1); });
-    build(in, mid, end, second, split_depth - 1);
-    other.join();
-  } else {
-    build(in, begin, mid, first, 0);
-    build(in, mid, end, second, 0);
-  }
+  const int32_t second = first + in.counts.at(mid - begin);
+  const int depth = std::max(split_depth - 1, 0);
+  const auto halves = [&](std::size_t from, std::size_t to) {
+    for (std::size_t half = from; half < to; ++half)
+      half == 0 ? build(in, begin, mid, first, depth) : build(in, mid, end, second, depth);
+  };
+  // On two threads, or one when split_depth is spent; parallel_for rethrows what a half threw.
+  if (split_depth > 0)
+    parallel_for(2, halves, 1);
+  else
+    halves(0, 2);
   node.second = second;
   node.box = nodes_[first].box;
   node.box.extend(nodes_[second].box);

@@ -60,7 +60,7 @@ class Bvh {
   struct BuildInput {
     const std::vector<Box>& boxes;
     const std::vector<Vec3>& centres;
-    const std::unordered_map<int32_t, int32_t>& counts;  ///< node_count of every subtree size over kLeafSize
+    const std::unordered_map<int32_t, int32_t>& counts;  ///< node_count of every subtree size
   };
   /// Nodes in a subtree of n items (median splits down to leaves of at most kLeafSize), memoised in `counts`.
   static int32_t node_count(int32_t n, std::unordered_map<int32_t, int32_t>& counts);
