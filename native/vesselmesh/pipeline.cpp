@@ -65,14 +65,17 @@ SizeLimitError too_large(int64_t triangles, bool at_least, int64_t sections, con
                         "(--max-triangles)");
 }
 
+bool checks_crossings(const TriMesh& mesh, Verify how) {
+  return how == Verify::full ||
+         (how == Verify::automatic && static_cast<int64_t>(mesh.faces.size()) <= kVerifyCrossingsUpTo);
+}
+
 Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Verify how) {
   Verification v;
   v.topology = check_topology(mesh);
   v.expected_components = centerline.components;
   v.loops = centerline.loops;
-  const auto triangles = static_cast<int64_t>(mesh.faces.size());
-  v.crossings_checked =
-      how == Verify::full || (how == Verify::automatic && triangles <= kVerifyCrossingsUpTo);
+  v.crossings_checked = checks_crossings(mesh, how);
   if (v.crossings_checked) {
     const IntersectionReport x = find_self_intersections(mesh, &centerline);
     v.crossing_pairs = x.pairs;
@@ -161,7 +164,11 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   result.rounded_vertices = round_tubes(result.mesh).moved;
   record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
          static_cast<int64_t>(result.mesh.faces.size()));
-  if (options.fit != Fit::none) {
+  // Where the surface is checked for crossings, the fit's moves can be taken back where faces cross.
+  const bool fits = options.fit != Fit::none;
+  const std::vector<Vec3> before_fit =
+      fits && checks_crossings(result.mesh, options.verify) ? result.mesh.vertices : std::vector<Vec3>();
+  if (fits) {
     start = Clock::now();
     if (!cones) cones.emplace(*centerline);
     const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
@@ -170,6 +177,18 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }
+  // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
+  // they hold.
+  for (Vec3& p : result.mesh.vertices) p = p.cast<float>().cast<double>();
+  start = Clock::now();
+  result.verification = verify(result.mesh, *centerline, options.verify);
+  if (!before_fit.empty() &&
+      result.verification.crossing_pairs > result.verification.pairs_in_overlapping_tubes) {
+    result.taken_back_vertices = take_back_crossing_moves(result.mesh, before_fit);
+    if (result.taken_back_vertices > 0) result.verification = verify(result.mesh, *centerline, options.verify);
+  }
+  record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
+         static_cast<int64_t>(result.mesh.faces.size()));
   if (options.curvature) {
     start = Clock::now();
     VertexCurvature curvature = estimate_curvature(result.mesh, needs_fit(tubes));
@@ -181,10 +200,6 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     record("curvature", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
   }
-  start = Clock::now();
-  result.verification = verify(result.mesh, *centerline, options.verify);
-  record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
-         static_cast<int64_t>(result.mesh.faces.size()));
   if (separation.moved_points > 0)
     result.separated = std::move(separation.graph);
   else if (hidden.dropped > 0)
@@ -209,6 +224,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["rounded_vertices"] = result.rounded_vertices;
   j["fitted_vertices"] = result.fitted_vertices;
   j["parted_vertices"] = result.parted_vertices;
+  j["taken_back_vertices"] = result.taken_back_vertices;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   const Verification& v = result.verification;

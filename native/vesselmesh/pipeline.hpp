@@ -81,6 +81,7 @@ struct MeshResult {
   int64_t rounded_vertices = 0;   ///< vertices the round stage moved onto their tube's circle
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube
+  int64_t taken_back_vertices = 0;  ///< fit moves taken back where faces crossed (take_back_crossing_moves)
   Verification verification;
 };
 

@@ -1,7 +1,6 @@
 #include "vesselmesh/check/check_mesh.hpp"
 
 #include <algorithm>
-#include <mutex>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -14,6 +13,7 @@
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/geometry/self_intersections.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
 
@@ -34,8 +34,6 @@ void require_valid_indices(const TriMesh& mesh) {
         throw std::invalid_argument("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
                                     " of a mesh with " + std::to_string(n) + " vertices");
 }
-
-bool repeats_vertex(const Tri& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; }
 
 // Measured against the longest edge, so that the test does not depend on the mesh's units.
 bool has_no_area(const Triangle& t) {
@@ -255,33 +253,7 @@ TopologyReport check_topology(const TriMesh& mesh) {
 
 IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline) {
   require_valid_indices(mesh);
-  std::vector<int32_t> face_of;
-  std::vector<Box> boxes;
-  for (int32_t f = 0; f < static_cast<int32_t>(mesh.faces.size()); ++f) {
-    if (repeats_vertex(mesh.faces[f])) continue;
-    const Triangle t = corners(mesh.vertices, mesh.faces[f]);
-    if (is_degenerate(t)) continue;
-    Box box;
-    for (const Vec3& p : t) box.extend(p);
-    face_of.push_back(f);
-    boxes.push_back(box);
-  }
-
-  // Pairs sharing an edge or a vertex need no special case: the predicate knows shared corners lie on
-  // the other plane, so such pairs count only when they fold over or cross away from what they share.
-  std::vector<std::array<int32_t, 2>> hits;
-  std::mutex lock;  // hits are rare: the threads rarely wait here
-  Bvh(boxes).for_each_overlapping_pair(
-      [&](int32_t i, int32_t j) {
-        const int32_t f = face_of[i], g = face_of[j];
-        if (triangle_interiors_meet(corners(mesh.vertices, mesh.faces[f]), corners(mesh.vertices, mesh.faces[g]))) {
-          const std::lock_guard<std::mutex> guard(lock);
-          hits.push_back({std::min(f, g), std::max(f, g)});
-        }
-      },
-      true);
-  std::sort(hits.begin(), hits.end());
-
+  const std::vector<std::array<int32_t, 2>> hits = intersecting_face_pairs(mesh);
   IntersectionReport r;
   r.pairs = static_cast<int64_t>(hits.size());
   r.examples.assign(hits.begin(),

@@ -6,6 +6,7 @@
 
 #include "vesselmesh/geometry/guarded_moves.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/geometry/self_intersections.hpp"
 #include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
@@ -212,6 +213,22 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   stats.moved = moved.moved;
   stats.held_back = moved.held_back;
   return stats;
+}
+
+int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before) {
+  int64_t taken_back = 0;
+  for (int round = 0; round < kTakeBackRounds; ++round) {
+    int64_t now = 0;
+    for (const auto& pair : intersecting_face_pairs(mesh))
+      for (int32_t f : pair)
+        for (int32_t v : mesh.faces[f]) {
+          const Vec3 back = before[v].cast<float>().cast<double>();
+          if (mesh.vertices[v] != back) mesh.vertices[v] = back, ++now;
+        }
+    if (now == 0) break;
+    taken_back += now;
+  }
+  return taken_back;
 }
 
 }  // namespace vesselmesh

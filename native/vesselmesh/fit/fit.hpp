@@ -49,4 +49,15 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit
 /// The same onto the tubes `cones` holds (built once for both the separate stage and the fit).
 FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit = Fit::onto);
 
+/// Rounds for take_back_crossing_moves: enough for the few faces a fold of the fit leaves crossing.
+constexpr int kTakeBackRounds = 4;
+
+/// Takes the fit's moves back where faces of `mesh` cross each other: the corners of every crossing face
+/// that the fit moved go back to where they stood before it (`before`, one position per vertex, rounded to
+/// float as the mesh's are), round after round until no face crosses, none of their corners moved, or
+/// kTakeBackRounds are done. The fit's guard tests its moves in double; two folds it leaves a float's
+/// step apart cross once the coordinates are rounded, as every file and Blender hold them. Returns how
+/// many vertices went back.
+int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before);
+
 }  // namespace vesselmesh

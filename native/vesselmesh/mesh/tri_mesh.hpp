@@ -13,6 +13,9 @@ namespace vesselmesh {
 
 using Tri = std::array<int32_t, 3>;
 
+/// A face with a corner twice has no area, whatever the positions.
+inline bool repeats_vertex(const Tri& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; }
+
 /// A named per-vertex scalar (curvature measures and the like), written to PLY as a float property.
 struct VertexProperty {
   std::string name;
