@@ -218,25 +218,27 @@ TEST(Pipeline, ThinBranchWaveringOutOfAFatVesselLeavesNoWeb) {
 }
 
 // A cluster of joints no square parts becomes one patch, the convex hull of all its branches' squares: on
-// a bending fat trunk with a side branch at every point it spans the bend and the side branches' roots,
-// 60 to 68 % of the area over half a radius off the tubes and faces 4.7 to 5.8 radii off at levels 0 to 2
-// (neuron-hemibrain-da1's blobs: 4.5 % of its area, up to 9.6 radii). It is closed and uncrossed all the
-// same.
-TEST(Pipeline, FatTrunkWithASideBranchAtEveryPointIsClosedAndUncrossed) {
+// a bending fat trunk with a side branch at every point it spans the bend and the side branches' roots
+// (neuron-hemibrain-da1's blobs). With the tubes' squares it had 60 to 68 % of the area over half a radius
+// off the tubes and faces 4.7 to 5.8 radii off at levels 0 to 2; with smaller squares on a patch along a
+// vessel (kAlongSquare) 8 to 17 % and 1.4 to 2.0 radii. Closed and uncrossed either way.
+TEST(Pipeline, FatTrunkWithASideBranchAtEveryPointIsClosedUncrossedAndHugsTheTrunk) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::fat_trunk_with_a_side_branch_at_every_point(scale));
     for (int levels = 0; levels <= 2; ++levels) {
       const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
       const MeshResult r = mesh_at(g, levels);
       expect_closed_surface(r.mesh, g, what);
-      EXPECT_EQ(find_self_intersections(r.mesh, &g).pairs, 0) << what;
+      const CenterlineGraph& tubes = r.separated ? *r.separated : g;
+      EXPECT_EQ(find_self_intersections(r.mesh, &tubes).pairs, 0) << what;
+      EXPECT_LE(radius_fidelity(r.mesh, tubes).largest_centroid_offset, 2.5) << what;
     }
   }
 }
 
 // Not met yet: the same surface on its tubes (issue 19's target for neuron-hemibrain-da1, 1 % of the area
-// over half a radius off). Deforming the hull onto the tubes does not get there (docs/pipeline.md,
-// decisions log): the patch must stop being one convex hull. Run with --gtest_also_run_disabled_tests.
+// over half a radius off). Deforming the hull onto the tubes does not get there, smaller squares only part
+// of the way (docs/pipeline.md, decisions log): the patch must stop being one convex hull. Run with --gtest_also_run_disabled_tests.
 TEST(Pipeline, DISABLED_FatTrunkWithASideBranchAtEveryPointFollowsItsTubes) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::fat_trunk_with_a_side_branch_at_every_point(scale));

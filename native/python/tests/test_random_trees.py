@@ -65,7 +65,7 @@ def crossing_counts(count, levels=(0, 1, 2)):
 
 # Open: joints whose hulls reach a neighbouring tube after the separate stage has parted the input's tubes
 # (docs/pipeline.md). Strict, so that the mark goes once the target holds.
-@pytest.mark.xfail(strict=True, reason="8 / 9 / 11 of 1,000 random trees cross themselves at levels 0 / 1 / 2")
+@pytest.mark.xfail(strict=True, reason="9 / 9 / 12 of 1,000 random trees cross themselves at levels 0 / 1 / 2")
 def test_at_most_five_of_a_thousand_random_trees_cross_themselves_at_any_level():
     crossed, _ = crossing_counts(1000)
     assert max(crossed.values()) <= 5, crossed

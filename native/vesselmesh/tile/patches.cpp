@@ -51,7 +51,25 @@ void Tiler::collect_patches() {
     if (kind_[b] == Kind::stub)
       patches_[patch_of_end_[head_[b] >= 0 ? head_[b] : tail_[b]]].inside.push_back(b);
   }
-  for (Patch& p : patches_) add_body(p);
+  for (Patch& p : patches_) {
+    add_body(p);
+    shrink_along_squares(p);
+  }
+}
+
+/// A patch whose joints include three or more at least half as wide as its widest (a vessel running
+/// through it, not a thin branch's corners beside a fat joint) gets smaller squares (kAlongSquare), but
+/// for those it shares with the next patch and where a tunnel or a rim holds a loop's hole.
+void Tiler::shrink_along_squares(const Patch& p) {
+  double widest = 0;
+  for (int32_t j : p.joints) widest = std::max(widest, g_.radius[j]);
+  const auto wide = std::count_if(p.joints.begin(), p.joints.end(),
+                                  [&](int32_t j) { return g_.radius[j] >= 0.5 * widest; });
+  const bool tunnel = std::any_of(p.ends.begin(), p.ends.end(),
+                                  [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
+  if (wide < 3 || tunnel || !p.rim.empty()) return;
+  for (int32_t i : p.ends)
+    if (kind_[ends_[i].branch] != Kind::shared) ends_[i].reach = kAlongSquare;
 }
 
 /// A patch with fewer than two openings (tube, shared or tunnel squares) is all its component has
@@ -83,7 +101,7 @@ void Tiler::add_body(Patch& p) {
 /// A shared square's corners are made once; seen from the branch's end they run the other way.
 std::array<int32_t, 4> Tiler::square_vertices(const End& e) {
   if (kind_[e.branch] != Kind::shared) {
-    const int32_t first = add_square(e.square);
+    const int32_t first = add_square(e.square, e.reach);
     return {first, first + 1, first + 2, first + 3};
   }
   int32_t& first = shared_vertex_[e.branch];
@@ -132,7 +150,7 @@ bool Tiler::close_patch(const Patch& p) {
     if (attempt > 0) place_squares(p, attempt);
     std::vector<Vec3> corners;
     for (int32_t i : p.ends)
-      for (int k = 0; k < 4; ++k) corners.push_back(ends_[i].square.corner(k, scale()));
+      for (int k = 0; k < 4; ++k) corners.push_back(corner(ends_[i], k));
     corners.insert(corners.end(), p.rim.begin(), p.rim.end());
     // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
     // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar

@@ -75,7 +75,7 @@ std::vector<Vec3> Tiler::others(const End& e, const Patch& p) const {
   std::vector<Vec3> out(p.rim.begin(), p.rim.end());
   for (int32_t i : p.ends)
     if (&ends_[i] != &e)
-      for (int k = 0; k < 4; ++k) out.push_back(ends_[i].square.corner(k, scale()));
+      for (int k = 0; k < 4; ++k) out.push_back(corner(ends_[i], k));
   return out;
 }
 
@@ -202,7 +202,7 @@ bool Tiler::held_back_beside(const End& e, const Patch& p) const {
     const End& o = ends_[i];
     if (&o == &e) continue;
     for (int q = 0; q < 4; ++q) {
-      const double reach = e.square.normal.dot(o.square.corner(q, scale()) - e.square.center);
+      const double reach = e.square.normal.dot(corner(o, q) - e.square.center);
       if (reach > furthest) furthest = reach, by = &o;
     }
   }
@@ -307,7 +307,7 @@ double Tiler::best_shared_square(int32_t b) {
             if (ends_[i].branch == b) continue;
             for (int q = 0; q < 4; ++q)
               clearance =
-                  std::min(clearance, -side * normal.dot(ends_[i].square.corner(q, scale()) - center));
+                  std::min(clearance, -side * normal.dot(corner(ends_[i], q) - center));
           }
         };
         consider(head_patch, 1.0);

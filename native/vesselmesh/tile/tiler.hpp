@@ -33,6 +33,15 @@ constexpr int kSharedTries = 4;
 /// tilted close to the joint and folded the tube beside them (vesselgraph-demo crossed itself).
 constexpr double kTiltFrom = 2;
 
+/// The squares of a patch that runs along a vessel through three joints or more have their corners at this
+/// share of the tubes' corner reach; the fit brings the patch out onto the tubes. Such a patch is one
+/// convex hull over the vessel's bend and its side branches' roots (neuron-hemibrain-da1's blobs, fixture
+/// fat_trunk_with_a_side_branch_at_every_point: 60 % of its area off the tubes, 8 % so), and smaller
+/// squares clear each other nearer their joints so that the hull hugs the vessel. Every patch's squares
+/// at 0.7, or 0.8, crossed brava-bg0003 and cohort trees where a tube flares from the small square to its
+/// first section; these at 0.55 crossed more random trees (docs/pipeline.md, decisions log).
+constexpr double kAlongSquare = 0.7;
+
 /// A square held back by the square beside it is tried at this many steps along its push, less one
 /// (tilt_on_the_way).
 constexpr int kWaySteps = 4;
@@ -62,6 +71,7 @@ struct End {
   bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
   bool tilted = false;        ///< tilted from that direction to clear the other squares (tilt_square)
   Section square;             ///< normal points away from the joint, corners counter-clockwise about it
+  double reach = 1;           ///< share of the tubes' corner reach its corners stand at (kAlongSquare)
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
 };
 
@@ -144,6 +154,7 @@ class Tiler {
   int32_t last_point(int32_t b) const { return branches_[b].points.back(); }
 
   double scale() const { return opt_.radius_scale; }
+  Vec3 corner(const End& e, int k) const { return e.square.corner(k, scale() * e.reach); }
 
   // base_mesh.cpp: each branch's kind, and the vertices no face uses dropped at the end.
   bool tube_folds(int32_t b, bool thorough) const;
@@ -172,6 +183,7 @@ class Tiler {
 
   // patches.cpp: the patches, each closed as the hull of its squares.
   void collect_patches();
+  void shrink_along_squares(const Patch& p);
   void add_body(Patch& p);
   std::array<int32_t, 4> square_vertices(const End& e);
   bool build_patch(const Patch& p);
@@ -187,8 +199,8 @@ class Tiler {
 
   // tubes.cpp: the tubes, their sections and caps.
   int32_t add_section(const Section& s, const Vec3& axis, double weight, const Vec3& bend = Vec3::Zero(),
-                      double slope = 0);
-  int32_t add_square(const Section& s);
+                      double slope = 0, double reach = 1);
+  int32_t add_square(const Section& s, double reach = 1);
   TubePlan plan_tube(int32_t b) const;
   void build_tube(int32_t b, const TubePlan& plan);
 };

@@ -18,12 +18,12 @@ namespace vesselmesh::tile_detail {
 /// corner is pushed out to the radius from the axis line rather than from the centre, or the tube
 /// would be too thin by the cosine of the lean (capped at twice the radius, a 60° lean).
 /// `weight`: 1 for a tube's sections, 0 for a joint patch's squares; `bend` and `slope` the axis's there
-/// (TubeAxis).
+/// (TubeAxis); `reach` the corners' share of the tubes' corner reach (End::reach).
 int32_t Tiler::add_section(const Section& s, const Vec3& axis, double weight, const Vec3& bend,
-                           double slope) {
+                           double slope, double reach) {
   const int32_t first = static_cast<int32_t>(mesh_.vertices.size());
   for (int k = 0; k < 4; ++k) {
-    const Vec3 offset = s.corner(k, scale()) - s.center;
+    const Vec3 offset = s.corner(k, scale() * reach) - s.center;
     const double along = offset.normalized().dot(axis);
     mesh_.vertices.push_back(s.center + offset / std::sqrt(std::max(1.0 - along * along, 0.25)));
     mesh_.axes.push_back({s.center - mesh_.vertices.back(), s.radius, weight, axis, bend, slope});
@@ -34,7 +34,9 @@ int32_t Tiler::add_section(const Section& s, const Vec3& axis, double weight, co
   return first;
 }
 
-int32_t Tiler::add_square(const Section& s) { return add_section(s, s.normal, 0.0); }
+int32_t Tiler::add_square(const Section& s, double reach) {
+  return add_section(s, s.normal, 0.0, Vec3::Zero(), 0, reach);
+}
 
 /// Branch b's tube (kind tube) before it joins the mesh: its sections placed for the limit surface, with
 /// the axis, bend and slope at each, and the quarter turn k its frames end with. Reads only the branch

@@ -29,7 +29,7 @@ bool Tiler::turn_tunnel(int32_t b, const Patch& p, const std::vector<int32_t>& k
   std::vector<Vec3> others = p.rim;
   for (int32_t i : p.ends)
     if (ends_[i].branch != b)
-      for (int k = 0; k < 4; ++k) others.push_back(ends_[i].square.corner(k, scale()));
+      for (int k = 0; k < 4; ++k) others.push_back(corner(ends_[i], k));
   // Each face the centroid lies in front of: its outward normal and the centroid's depth below it.
   std::vector<std::pair<Vec3, double>> faces;
   for (const Tri& t : convex_hull(others)) {
