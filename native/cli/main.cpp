@@ -210,7 +210,8 @@ int main(int argc, char** argv) {
   mesh->add_option(
           "--verify", mesh_options.verify,
           "check the surface before reporting success: closed manifold, and crossings up to a million "
-          "triangles (auto), whatever its size (full), or never (topology)")
+          "triangles (auto), whatever its size (full), or never (topology); where crossings are checked, "
+          "joint patches hug their branches closer, built again as before round a crossing")
       ->transform(CLI::CheckedTransformer(verify_names()));
 
   std::string check_in, check_centerline;

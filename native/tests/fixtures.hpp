@@ -459,6 +459,36 @@ inline CenterlineData crowded_joints(double scale) {
   return d;
 }
 
+/// A random tree (native/python/tests/test_random_trees.py, seed 1, the 78th) of 29 points whose surface
+/// crossed itself at levels 1 and 2 with small squares on every patch (its joints crowd within a radius or
+/// two of each other); built again with full squares round the crossing, it does not.
+inline CenterlineData crossing_with_small_squares(double scale) {
+  CenterlineData d = start(Vec3::Zero(), 0.751398 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{-0.0269147, 0.00069899, 0.045967}, 0.881966, 0},  {{1.77934, 0.474352, 1.36242}, 0.912596, 1},
+      {{-0.411056, 1.14607, -0.0703968}, 0.668823, 0},  {{-0.0269876, 0.0465541, 0.259469}, 0.549584, 1},
+      {{5.14188, -0.281672, 2.33442}, 0.753953, 2},  {{-0.302688, -0.157327, 0.845474}, 0.884483, 1},
+      {{-0.785515, -0.333728, 1.72865}, 1.0035, 6},  {{-0.857438, -0.31162, 2.0119}, 0.690086, 7},
+      {{-0.991113, -1.67537, 0.930556}, 0.484532, 0},  {{-1.10723, -1.84353, 1.03075}, 0.331829, 9},
+      {{-0.323351, -0.172789, 0.907617}, 0.713068, 6},  {{-1.62903, -0.53679, 0.28116}, 0.663197, 11},
+      {{-1.68057, 0.098831, 0.193838}, 0.578373, 12},  {{-1.44249, 0.223026, 0.326185}, 0.557183, 13},
+      {{-1.31653, 0.0789145, 0.907875}, 0.360989, 14},  {{-0.336349, -0.0533456, 5.00527}, 0.330022, 15},
+      {{5.20884, -0.297347, 2.34565}, 0.621718, 5},  {{-0.835581, 1.97818, -0.0224189}, 0.672346, 3},
+      {{-1.26055, -2.05294, 1.14186}, 0.262188, 10},  {{-2.77458, -1.82331, 0.228239}, 0.310174, 19},
+      {{-3.03719, -1.25645, -0.212809}, 0.328258, 20},  {{-2.99336, 0.595636, -1.37433}, 0.316092, 21},
+      {{-1.37092, -2.39934, 0.962082}, 0.846966, 6},  {{-1.40671, -2.41129, 0.962324}, 0.665133, 23},
+      {{7.728, -1.92049, 3.10407}, 0.570359, 17},  {{-2.608, -1.0262, -0.150525}, 0.717408, 12},
+      {{-2.63901, -1.04051, -0.163291}, 0.826736, 26},  {{-5.63722, -2.42976, -1.10358}, 0.568159, 27},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
+
 /// A random tree (native/python/tests/test_random_trees.py, seed 2, the 438th) of 20 points, radii 0.09 to
 /// 0.58, three of whose terminal branches lie wholly inside the tubes of others (a thin twig from a point
 /// 0.04 radii from its joint, inside the fatter vessel there): a surface that follows their tubes as well

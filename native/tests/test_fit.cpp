@@ -27,6 +27,9 @@ TriMesh limit_surface(const CenterlineGraph& g) {
   o.subdivision.method = Refinement::uniform;
   o.crossings = Crossings::keep;  // the fit's own parting of crossing tubes is what some tests look at
   o.fit = Fit::none;
+  // Full squares, as a surface the pipeline does not check for crossings has them: their hull webs a crotch
+  // (small squares hug it, tile step 7 of docs/pipeline.md), and the fit has a web to bring in.
+  o.verify = Verify::topology;
   // Sections a diameter apart (Eq. 1 alone, as on a bend): the tests move and count the vertices of given
   // stretches of straight tube, which sections placed only where the surface needs them leave few.
   o.sampling.tolerance = 0;
@@ -293,6 +296,7 @@ TEST(Fit, StageIsPartOfThePipelineAndCanBeLeftOut) {
   const CenterlineGraph g = build_graph(fixtures::bifurcation(1.0));
   MeshOptions o;
   o.subdivision.method = Refinement::uniform;
+  o.verify = Verify::topology;  // full squares: their hull webs the crotch, and the fit brings it in
   const MeshResult with = mesh_centerline(g, o);
   o.fit = Fit::none;
   const MeshResult without = mesh_centerline(g, o);

@@ -10,6 +10,7 @@
 #include "vesselmesh/curvature/curvature.hpp"
 #include "vesselmesh/curvature/tube_curvature.hpp"
 #include "vesselmesh/error.hpp"
+#include "vesselmesh/geometry/self_intersections.hpp"
 #include "vesselmesh/round/round.hpp"
 #include "vesselmesh/separate/hidden.hpp"
 #include "vesselmesh/tile/octagons.hpp"
@@ -84,6 +85,22 @@ Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Veri
   return v;
 }
 
+/// About how many sections the tile stage places on the centerline: one a diameter along every edge, and a
+/// quarter more for the joints' squares and the sections crowding in bends (the shared sets have 0.7 to 1.5
+/// times as many as one a diameter, the cerebral trees 1.3).
+double sections_estimate(const CenterlineGraph& g) {
+  double sections = 0;
+  for (const auto& [a, b] : g.edges)
+    if (g.radius[a] + g.radius[b] > 0)
+      sections += (g.points[a] - g.points[b]).norm() / (g.radius[a] + g.radius[b]);
+  return 1.25 * sections;
+}
+
+Vec3 centroid(const TriMesh& mesh, int32_t f) {
+  const Tri& t = mesh.faces[f];
+  return (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
+}
+
 }  // namespace
 
 MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options) {
@@ -91,8 +108,13 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   if (graph.edges.empty()) throw std::invalid_argument("the centerline has no edges");
   using Clock = std::chrono::steady_clock;
   MeshResult result;
+  // A stage run again (another try with full squares, below) adds its time to the first run's.
   auto record = [&](const char* stage, Clock::time_point start, int64_t vertices, int64_t faces) {
-    result.stages.push_back({stage, std::chrono::duration<double>(Clock::now() - start).count(), vertices, faces});
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const auto same = std::find_if(result.stages.begin(), result.stages.end(),
+                                   [&](const StageStats& s) { return s.stage == stage; });
+    if (same == result.stages.end()) return result.stages.push_back({stage, seconds, vertices, faces});
+    same->seconds += seconds, same->vertices = vertices, same->faces = faces;
   };
 
   auto start = Clock::now();
@@ -117,7 +139,6 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
            static_cast<int64_t>(graph.edges.size()));
   }
 
-  start = Clock::now();
   TileOptions tile;
   tile.sampling = options.sampling;
   tile.caps = options.caps;
@@ -126,69 +147,102 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   const int64_t per_base_triangle = int64_t{1} << (2 * options.subdivision.levels);
   const int64_t per_section = 2 * options.sides * per_base_triangle;
   tile.max_sections = std::max<int64_t>(2, options.max_triangles / per_section);
-  BaseMesh base;
-  try {
-    base = tile_base_mesh(*centerline, tile);
-    if (options.sides == 8)
-      base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
-  } catch (const SizeLimitError&) {
-    throw too_large(per_section * tile.max_sections, true, tile.max_sections, options);
-  }
-  const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
-  if (base_triangles * per_base_triangle > options.max_triangles)
-    throw too_large(base_triangles * per_base_triangle, false, base.sections, options);
-  record("tile", start, static_cast<int64_t>(base.vertices.size()),
-         static_cast<int64_t>(base.quads.size() + base.triangles.size()));
-  result.sections = base.sections;
-  result.joint_patches = base.joints;
-  result.absorbed_branches = base.absorbed_branches;
-  result.tunnels = base.tunnels;
-
-  start = Clock::now();
-  result.mesh = triangulate(base);
-  // Only the curvature reads the axis's shape: without it, subdivision carries 5 properties instead of 12.
-  if (!options.curvature) drop_tube_axis_properties(result.mesh, kRoundAxisProperties);
-  record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
-         static_cast<int64_t>(result.mesh.faces.size()));
-
-  start = Clock::now();
-  SubdividedMesh subdivided = subdivide(result.mesh, options.subdivision);
-  result.mesh = std::move(subdivided.mesh);
-  result.transition = std::move(subdivided.transition);
-  result.tagged = std::move(subdivided.tagged);
-  record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
-         static_cast<int64_t>(result.mesh.faces.size()));
-  start = Clock::now();
-  // The tubes' own curvature, read before rounding takes the tube properties off (tube_curvature.hpp).
-  const TubeCurvature tubes = options.curvature ? tube_curvature(result.mesh) : TubeCurvature{};
-  result.rounded_vertices = round_tubes(result.mesh).moved;
-  record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
-         static_cast<int64_t>(result.mesh.faces.size()));
-  // Where the surface is checked for crossings, the fit's moves can be taken back where faces cross.
-  const bool fits = options.fit != Fit::none;
-  const std::vector<Vec3> before_fit =
-      fits && checks_crossings(result.mesh, options.verify) ? result.mesh.vertices : std::vector<Vec3>();
-  if (fits) {
+  // Small squares on every patch where the surface will be checked for crossings (tile step 7 of
+  // docs/pipeline.md): where it crosses itself outside overlapping tubes, the patches near the crossing
+  // are tried again with full squares.
+  tile.small_squares = options.verify == Verify::full ||
+                       (options.verify == Verify::automatic &&
+                        per_section * sections_estimate(*centerline) <= kVerifyCrossingsUpTo);
+  TubeCurvature tubes;
+  for (int tries = 1;; ++tries) {
     start = Clock::now();
-    if (!cones) cones.emplace(*centerline);
-    const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
-    result.fitted_vertices = fit.moved;
-    result.parted_vertices = fit.parted;
-    record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
+    BaseMesh base;
+    try {
+      base = tile_base_mesh(*centerline, tile);
+      if (options.sides == 8)
+        base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
+    } catch (const SizeLimitError&) {
+      throw too_large(per_section * tile.max_sections, true, tile.max_sections, options);
+    }
+    const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
+    if (base_triangles * per_base_triangle > options.max_triangles)
+      throw too_large(base_triangles * per_base_triangle, false, base.sections, options);
+    record("tile", start, static_cast<int64_t>(base.vertices.size()),
+           static_cast<int64_t>(base.quads.size() + base.triangles.size()));
+    result.sections = base.sections;
+    result.joint_patches = base.joints;
+    result.absorbed_branches = base.absorbed_branches;
+    result.tunnels = base.tunnels;
+
+    start = Clock::now();
+    result.mesh = triangulate(base);
+    // Only the curvature reads the axis's shape: without it, subdivision carries 5 properties instead of 12.
+    if (!options.curvature) drop_tube_axis_properties(result.mesh, kRoundAxisProperties);
+    record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
            static_cast<int64_t>(result.mesh.faces.size()));
+
+    start = Clock::now();
+    SubdividedMesh subdivided = subdivide(result.mesh, options.subdivision);
+    result.mesh = std::move(subdivided.mesh);
+    result.transition = std::move(subdivided.transition);
+    result.tagged = std::move(subdivided.tagged);
+    record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
+           static_cast<int64_t>(result.mesh.faces.size()));
+    // Small squares where the estimate let them through but the surface turned out too large to be checked:
+    // built again as where it is never checked.
+    if (tile.small_squares && !checks_crossings(result.mesh, options.verify)) {
+      tile.small_squares = false;
+      ++result.full_square_tries;
+      continue;
+    }
+    start = Clock::now();
+    // The tubes' own curvature, read before rounding takes the tube properties off (tube_curvature.hpp).
+    if (options.curvature) tubes = tube_curvature(result.mesh);
+    result.rounded_vertices = round_tubes(result.mesh).moved;
+    record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
+           static_cast<int64_t>(result.mesh.faces.size()));
+    // Where the surface is checked for crossings, the fit's moves can be taken back where faces cross.
+    const bool fits = options.fit != Fit::none;
+    const std::vector<Vec3> before_fit =
+        fits && checks_crossings(result.mesh, options.verify) ? result.mesh.vertices : std::vector<Vec3>();
+    if (fits) {
+      start = Clock::now();
+      if (!cones) cones.emplace(*centerline);
+      const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
+      result.fitted_vertices = fit.moved;
+      result.parted_vertices = fit.parted;
+      record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
+             static_cast<int64_t>(result.mesh.faces.size()));
+    }
+    // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
+    // they hold.
+    for (Vec3& p : result.mesh.vertices) p = p.cast<float>().cast<double>();
+    start = Clock::now();
+    result.verification = verify(result.mesh, *centerline, options.verify);
+    const auto crosses = [&] {
+      return result.verification.crossing_pairs > result.verification.pairs_in_overlapping_tubes;
+    };
+    result.taken_back_vertices = 0;
+    if (!before_fit.empty() && crosses()) {
+      result.taken_back_vertices = take_back_crossing_moves(result.mesh, before_fit);
+      if (result.taken_back_vertices > 0)
+        result.verification = verify(result.mesh, *centerline, options.verify);
+    }
+    record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
+           static_cast<int64_t>(result.mesh.faces.size()));
+    if (!tile.small_squares) break;
+    const bool lost_a_loop = result.verification.topology.genus < result.verification.loops;
+    if (lost_a_loop || (crosses() && tries == kSmallSquareTries)) {
+      // A loop lost (vesselgraph-demo at level 0), or crossings that full squares round them did not part:
+      // small squares only where the surface is never checked, on patches along a vessel.
+      tile.small_squares = false;
+    } else {
+      if (!crosses()) break;
+      for (const auto& pair : intersecting_face_pairs(result.mesh))
+        for (int32_t f : pair) tile.full_squares_near.push_back(centroid(result.mesh, f));
+    }
+    ++result.full_square_tries;
   }
-  // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
-  // they hold.
-  for (Vec3& p : result.mesh.vertices) p = p.cast<float>().cast<double>();
-  start = Clock::now();
-  result.verification = verify(result.mesh, *centerline, options.verify);
-  if (!before_fit.empty() &&
-      result.verification.crossing_pairs > result.verification.pairs_in_overlapping_tubes) {
-    result.taken_back_vertices = take_back_crossing_moves(result.mesh, before_fit);
-    if (result.taken_back_vertices > 0) result.verification = verify(result.mesh, *centerline, options.verify);
-  }
-  record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
-         static_cast<int64_t>(result.mesh.faces.size()));
   if (options.curvature) {
     start = Clock::now();
     VertexCurvature curvature = estimate_curvature(result.mesh, needs_fit(tubes));
@@ -225,6 +279,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["fitted_vertices"] = result.fitted_vertices;
   j["parted_vertices"] = result.parted_vertices;
   j["taken_back_vertices"] = result.taken_back_vertices;
+  j["full_square_tries"] = result.full_square_tries;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   const Verification& v = result.verification;

@@ -3,7 +3,9 @@
 //   graph → separate (crossing vessels) → sample → frames → tile (base mesh of squares, then octagons) →
 //   triangulate → subdivide (uniform or adaptive, onto the Loop limit surface) → round (tubes) → fit (onto
 //   the input's tubes) [→ curvature] → verify
-// with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests.
+// with the time and the output size of each stage, for `vesselmesh mesh --stats-json` and the tests. Tile to
+// verify run again, with the joint patches' full squares, round where the surface crossed itself (tile step 7
+// of docs/pipeline.md).
 
 #include <optional>
 #include <string>
@@ -25,6 +27,10 @@ namespace vesselmesh {
 /// never does.
 enum class Verify { automatic, full, topology };
 constexpr int64_t kVerifyCrossingsUpTo = 1'000'000;
+
+/// Builds of the surface with small squares, each with full squares round where the one before crossed itself
+/// (MeshResult::full_square_tries); then one as where crossings are not checked, if it still crosses.
+constexpr int kSmallSquareTries = 3;
 
 struct MeshOptions {
   Crossings crossings = Crossings::separate;
@@ -82,6 +88,10 @@ struct MeshResult {
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube
   int64_t taken_back_vertices = 0;  ///< fit moves taken back where faces crossed (take_back_crossing_moves)
+  /// Builds again from the tile stage with full squares (tile step 7 of docs/pipeline.md): round where the
+  /// build with small squares crossed itself (at most kSmallSquareTries − 1 times), or as where crossings are
+  /// not checked where it lost a loop, still crossed after those, or came out too large to be checked.
+  int64_t full_square_tries = 0;
   Verification verification;
 };
 

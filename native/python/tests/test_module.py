@@ -171,7 +171,9 @@ def test_mesh_of_a_loop_has_genus_one(project_data):
 
 def test_fit_brings_the_crotch_onto_the_tubes_and_can_be_left_out(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
-    fitted, plain = vm.mesh(graph, levels=2), vm.mesh(graph, levels=2, fit="none")
+    # Full squares, as a surface not checked for crossings has them: their hull webs the crotch (small ones
+    # hug it, docs/pipeline.md tile step 7), and the fit has a web to bring in.
+    fitted, plain = (vm.mesh(graph, levels=2, verify="topology", fit=fit) for fit in ("onto", "none"))
     assert fitted["stats"]["fitted_vertices"] > 0 and plain["stats"]["fitted_vertices"] == 0
     assert np.array_equal(fitted["faces"], plain["faces"])
     furthest_out = [np.nanmax(vm.radius_error(s["vertices"], s["faces"], graph)) for s in (fitted, plain)]
@@ -298,15 +300,20 @@ def test_mean_curvature_times_the_local_radius_is_a_half_on_a_tube_of_any_size(s
 @pytest.mark.parametrize("method", ["curvature", "dihedral"])
 def test_adaptive_methods_give_fewer_triangles_on_the_uniform_surface(project_data, method):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
-    uniform = vm.mesh(graph, levels=2, method="uniform")
-    adaptive = vm.mesh(graph, levels=2, method=method, uniform_levels=0, angle=150.0)
+    # Before the fit, whose guard reads each surface's own triangles and holds back other moves where the
+    # patches' small squares come out onto the tubes (0.08 radii apart on this fixture).
+    uniform = vm.mesh(graph, levels=2, method="uniform", fit="none")
+    adaptive = vm.mesh(graph, levels=2, method=method, uniform_levels=0, angle=150.0, fit="none")
     assert len(adaptive["faces"]) < len(uniform["faces"])
     assert vm.check(adaptive["vertices"], adaptive["faces"])["closed_manifold"]
     assert adaptive["transition"].shape == (len(adaptive["faces"]),) and adaptive["transition"].any()
     assert not uniform["transition"].any()
     distance = vm.surface_distance(adaptive["vertices"], adaptive["faces"], uniform["vertices"],
                                    uniform["faces"], graph)
-    assert distance["vertices"]["max"] < 1e-9  # adaptive vertices are vertices of the uniform surface
+    # Adaptive vertices are vertices of the uniform surface, each coordinate rounded to float: one float
+    # step of the largest coordinate apart at most, counted in the smallest radius.
+    float_step = np.spacing(np.float32(np.abs(uniform["vertices"]).max())) / graph.radius.min()
+    assert distance["vertices"]["max"] <= 2 * float_step
     assert 0 < distance["centroids"]["max"] < 0.5  # unsplit triangles are flat chords of it
     assert distance["centroids"]["count"] == len(adaptive["faces"])
 

@@ -31,6 +31,11 @@ struct TileOptions {
   double radius_scale = 1.0;
   /// Throws SizeLimitError rather than place more cross-sections than this in all.
   int64_t max_sections = std::numeric_limits<int64_t>::max();
+  /// Every joint patch's squares small, not only those of a patch along a vessel (tile_detail::kSmallSquare),
+  /// but for the patches with a joint within kNearCrossing of its radius of a place in `full_squares_near`:
+  /// where a surface with small squares crossed itself, tried again with theirs full (pipeline.cpp).
+  bool small_squares = false;
+  std::vector<Vec3> full_squares_near;
 };
 
 /// Where a base vertex's tube is round: the axis point of its section, the radius the surface should have

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/tile/convex_hull.hpp"
 #include "vesselmesh/tile/tiler.hpp"
 
@@ -53,23 +54,44 @@ void Tiler::collect_patches() {
   }
   for (Patch& p : patches_) {
     add_body(p);
-    shrink_along_squares(p);
+    shrink_squares(p);
   }
 }
 
-/// A patch whose joints include three or more at least half as wide as its widest (a vessel running
-/// through it, not a thin branch's corners beside a fat joint) gets smaller squares (kAlongSquare), but
-/// for those it shares with the next patch and where a tunnel or a rim holds a loop's hole.
-void Tiler::shrink_along_squares(const Patch& p) {
+/// Small squares (kSmallSquare) for a patch whose joints include three or more at least half as wide as its
+/// widest (a vessel running through it, not a thin branch's corners beside a fat joint), and for every patch
+/// where the options ask for them; but full ones near a place where the surface crossed itself with small
+/// squares, and for those a patch shares with the next one and where a tunnel or a rim holds a loop's hole.
+void Tiler::shrink_squares(const Patch& p) {
   double widest = 0;
   for (int32_t j : p.joints) widest = std::max(widest, g_.radius[j]);
   const auto wide = std::count_if(p.joints.begin(), p.joints.end(),
                                   [&](int32_t j) { return g_.radius[j] >= 0.5 * widest; });
   const bool tunnel = std::any_of(p.ends.begin(), p.ends.end(),
                                   [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
-  if (wide < 3 || tunnel || !p.rim.empty()) return;
+  if ((wide < 3 && !opt_.small_squares) || tunnel || !p.rim.empty() || near_crossing(p)) return;
   for (int32_t i : p.ends)
-    if (kind_[ends_[i].branch] != Kind::shared) ends_[i].reach = kAlongSquare;
+    if (kind_[ends_[i].branch] != Kind::shared) ends_[i].reach = kSmallSquare;
+}
+
+/// Whether a place where the surface crossed itself with small squares (TileOptions::full_squares_near) lies
+/// within kNearCrossing radii of one of the patch's joints or of one of its branches: where a square stands
+/// changes its branch's sections all along, and a tube folded 12 radii from its joint (secomb-rat-mesentery).
+bool Tiler::near_crossing(const Patch& p) const {
+  for (const Vec3& at : opt_.full_squares_near) {
+    for (int32_t j : p.joints)
+      if ((at - g_.points[j]).norm() <= kNearCrossing * g_.radius[j]) return true;
+    for (int32_t i : p.ends) {
+      const BranchCurve& c = curves_[ends_[i].branch];
+      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+        const double t = closest_parameters(c.points[k], c.points[k + 1], at, at).first;
+        const double radius = c.radius[k] + t * (c.radius[k + 1] - c.radius[k]);
+        const Vec3 nearest = c.points[k] + t * (c.points[k + 1] - c.points[k]);
+        if ((nearest - at).norm() <= kNearCrossing * radius) return true;
+      }
+    }
+  }
+  return false;
 }
 
 /// A patch with fewer than two openings (tube, shared or tunnel squares) is all its component has

@@ -33,14 +33,20 @@ constexpr int kSharedTries = 4;
 /// tilted close to the joint and folded the tube beside them (vesselgraph-demo crossed itself).
 constexpr double kTiltFrom = 2;
 
-/// The squares of a patch that runs along a vessel through three joints or more have their corners at this
-/// share of the tubes' corner reach; the fit brings the patch out onto the tubes. Such a patch is one
-/// convex hull over the vessel's bend and its side branches' roots (neuron-hemibrain-da1's blobs, fixture
-/// fat_trunk_with_a_side_branch_at_every_point: 60 % of its area off the tubes, 8 % so), and smaller
-/// squares clear each other nearer their joints so that the hull hugs the vessel. Every patch's squares
-/// at 0.7, or 0.8, crossed brava-bg0003 and cohort trees where a tube flares from the small square to its
-/// first section; these at 0.55 crossed more random trees (docs/pipeline.md, decisions log).
-constexpr double kAlongSquare = 0.7;
+/// Small squares have their corners at this share of the tubes' corner reach; the fit brings the patch out
+/// onto the tubes. They clear each other nearer their joints, so that the patch's convex hull hugs its
+/// branches rather than spanning a vessel's bend and its side branches' roots (neuron-hemibrain-da1's blobs,
+/// fixture fat_trunk_with_a_side_branch_at_every_point: 60 % of its area off the tubes, 8 % so). A patch
+/// along a vessel (three joints or more) has them always; every patch has them where the surface is checked
+/// for crossings (TileOptions::small_squares): a tube flaring from a small square to its first section can
+/// cross a vessel passing close by, and the patches near such a crossing are tried again with full squares.
+/// At 0.55 more random trees crossed (docs/pipeline.md, decisions log).
+constexpr double kSmallSquare = 0.7;
+
+/// A patch keeps full squares when one of its joints, or a point of one of its branches, lies within this
+/// many of its radii of a place where the surface crossed itself with small squares
+/// (TileOptions::full_squares_near).
+constexpr double kNearCrossing = 4;
 
 /// A square held back by the square beside it is tried at this many steps along its push, less one
 /// (tilt_on_the_way).
@@ -71,7 +77,7 @@ struct End {
   bool chord = false;         ///< faces along the chord from the joint to its centre, not along the tangent
   bool tilted = false;        ///< tilted from that direction to clear the other squares (tilt_square)
   Section square;             ///< normal points away from the joint, corners counter-clockwise about it
-  double reach = 1;           ///< share of the tubes' corner reach its corners stand at (kAlongSquare)
+  double reach = 1;           ///< share of the tubes' corner reach its corners stand at (kSmallSquare)
   int32_t first_vertex = -1;  ///< the square's corners are vertices first_vertex .. first_vertex + 3
 };
 
@@ -183,7 +189,8 @@ class Tiler {
 
   // patches.cpp: the patches, each closed as the hull of its squares.
   void collect_patches();
-  void shrink_along_squares(const Patch& p);
+  void shrink_squares(const Patch& p);
+  bool near_crossing(const Patch& p) const;
   void add_body(Patch& p);
   std::array<int32_t, 4> square_vertices(const End& e);
   bool build_patch(const Patch& p);
