@@ -88,9 +88,10 @@ struct MeshResult {
   int64_t fitted_vertices = 0;    ///< vertices the fit stage moved
   int64_t parted_vertices = 0;    ///< vertices it gave a move off another vessel's overlapping tube
   int64_t taken_back_vertices = 0;  ///< fit moves taken back where faces crossed (take_back_crossing_moves)
-  /// Builds again from the tile stage with full squares (tile step 7 of docs/pipeline.md): round where the
-  /// build with small squares crossed itself (at most kSmallSquareTries − 1 times), or as where crossings are
-  /// not checked where it lost a loop, still crossed after those, or came out too large to be checked.
+  /// Builds again from the tile stage (tile step 7 of docs/pipeline.md): with full squares round where the
+  /// build with small squares crossed itself (at most kSmallSquareTries − 1 times), or with small squares only
+  /// on patches along a vessel, as where crossings are not checked, where it lost a loop, still crossed after
+  /// those tries, or came out too large to be checked.
   int64_t full_square_tries = 0;
   Verification verification;
 };

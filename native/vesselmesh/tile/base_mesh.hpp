@@ -32,8 +32,8 @@ struct TileOptions {
   /// Throws SizeLimitError rather than place more cross-sections than this in all.
   int64_t max_sections = std::numeric_limits<int64_t>::max();
   /// Every joint patch's squares small, not only those of a patch along a vessel (tile_detail::kSmallSquare),
-  /// but for the patches with a joint within kNearCrossing of its radius of a place in `full_squares_near`:
-  /// where a surface with small squares crossed itself, tried again with theirs full (pipeline.cpp).
+  /// but for the patches with a joint or a branch within tile_detail::kNearCrossing radii of a place in
+  /// `full_squares_near`: where a surface with small squares crossed itself (pipeline.cpp).
   bool small_squares = false;
   std::vector<Vec3> full_squares_near;
 };

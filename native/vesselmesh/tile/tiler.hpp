@@ -38,8 +38,8 @@ constexpr double kTiltFrom = 2;
 /// branches rather than spanning a vessel's bend and its side branches' roots (neuron-hemibrain-da1's blobs,
 /// fixture fat_trunk_with_a_side_branch_at_every_point: 60 % of its area off the tubes, 8 % so). A patch
 /// along a vessel (three joints or more) has them always; every patch has them where the surface is checked
-/// for crossings (TileOptions::small_squares): a tube flaring from a small square to its first section can
-/// cross a vessel passing close by, and the patches near such a crossing are tried again with full squares.
+/// for crossings (TileOptions::small_squares): with small squares a tube starts nearer its joint and can cross
+/// a vessel passing close by, and the patches near such a crossing are tried again with full squares.
 /// At 0.55 more random trees crossed (docs/pipeline.md, decisions log).
 constexpr double kSmallSquare = 0.7;
 
