@@ -210,8 +210,9 @@ int main(int argc, char** argv) {
   mesh->add_option(
           "--verify", mesh_options.verify,
           "check the surface before reporting success: closed manifold, and crossings up to a million "
-          "triangles (auto), whatever its size (full), or never (topology); where crossings are checked, "
-          "joint patches hug their branches closer, built again as before round a crossing")
+          "triangles, near the joints and caps up to 16 million (auto), everywhere whatever its size "
+          "(full), or never (topology); where crossings are checked, joint patches hug their branches "
+          "closer, built again as before round a crossing")
       ->transform(CLI::CheckedTransformer(verify_names()));
 
   std::string check_in, check_centerline;
@@ -248,13 +249,20 @@ int main(int argc, char** argv) {
       const Verification& v = result.verification;
       std::cerr << "wrote " << mesh_out << ": " << result.mesh.vertices.size() << " vertices, "
                 << result.mesh.faces.size() << " triangles";
+      const std::string where = v.crossings_checked ? "" : " near its joints and caps";
       if (v.problem().empty())
         std::cerr << "; checked: a closed manifold of genus " << v.topology.genus << ", "
-                  << (!v.crossings_checked    ? "crossings not checked above a million triangles "
-                                                "(--verify full, or vesselmesh check)"
-                      : v.crossing_pairs == 0 ? "crossing itself nowhere"
-                                              : "crossing itself only where the input's tubes overlap (" +
-                                                    std::to_string(v.crossing_pairs) + " triangle pairs)");
+                  << (!v.crossings_checked && !v.crossings_checked_near_joints
+                          ? std::string(mesh_options.verify == Verify::topology
+                                            ? "crossings not checked (--verify topology)"
+                                            : "crossings not checked above 16 million triangles "
+                                              "(--verify full, or vesselmesh check)")
+                      : v.crossing_pairs == 0
+                          ? "crossing itself nowhere" + where
+                          : "crossing itself" + where + " only where the input's tubes overlap (" +
+                                std::to_string(v.crossing_pairs) + " triangle pairs)");
+      if (v.problem().empty() && v.crossings_checked_near_joints)
+        std::cerr << " (only there above a million triangles: --verify full, or vesselmesh check)";
       std::cerr << "\n";
       if (v.problem().empty() && v.topology.genus != v.loops)
         std::cerr << "note: the centerline has " << v.loops << " loops and the surface genus "

@@ -326,7 +326,8 @@ PYBIND11_MODULE(vesselmesh_core, m) {
       "max_step radii. sides: round every base section, 4 or 8.\n"
       "Raises SizeLimitError (a RuntimeError), before the work, for a surface over max_triangles, and\n"
       "ValueError for options out of range. stats['verified'] is the surface's own check ('auto': closed\n"
-      "manifold, and crossings up to a million triangles; 'full'; 'topology'): its 'problem' is empty when\n"
+      "manifold, and crossings up to a million triangles, near the joints and caps up to 16 million;\n"
+      "'full'; 'topology'): its 'problem' is empty when\n"
       "the surface passes, else says what is wrong.");
 
   m.def(

@@ -14,6 +14,7 @@
 #include "vesselmesh/geometry/closest_point.hpp"
 #include "vesselmesh/geometry/predicates.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
+#include "vesselmesh/geometry/self_intersections.hpp"
 
 using namespace vesselmesh;
 using surfaces::scaled;
@@ -342,6 +343,30 @@ TEST(SelfIntersections, VertexPushedThroughTheOppositeSideIsFound) {
     EXPECT_LE(r.examples.size(), 20u);
     EXPECT_LT(r.examples[0][0], r.examples[0][1]);
     EXPECT_EQ(r.pairs_in_overlapping_tubes, 0);
+  }
+}
+
+// Two tori in one plane, their rings crossing at two places, and a face without an interior.
+TEST(SelfIntersections, PairsAmongFlaggedFacesAreThePairsWithAFlaggedFaceAndNoMore) {
+  TriMesh mesh = torus(48, 24, 2.0, 0.5);
+  const TriMesh other = torus(40, 20, 2.0, 0.6);
+  const auto n = static_cast<int32_t>(mesh.vertices.size());
+  for (const Vec3& p : other.vertices) mesh.vertices.push_back(Vec3(p.x() + 1.5, p.y(), p.z()));
+  for (const Tri& t : other.faces) mesh.faces.push_back({t[0] + n, t[1] + n, t[2] + n});
+  mesh.faces.push_back({0, 0, 1});  // no interior, flagged or not
+  for (double s : kScales) {
+    const TriMesh m = scaled(mesh, s);
+    const auto all = intersecting_face_pairs(m);
+    ASSERT_GT(all.size(), 100u) << s;
+    for (int every : {1, 3, 17}) {
+      std::vector<char> among(m.faces.size());
+      for (std::size_t f = 0; f < among.size(); f += every) among[f] = 1;
+      std::vector<std::array<int32_t, 2>> expected;
+      for (const auto& pair : all)
+        if (among[pair[0]] || among[pair[1]]) expected.push_back(pair);
+      EXPECT_EQ(intersecting_face_pairs(m, among), expected) << s << ", every " << every;
+    }
+    EXPECT_TRUE(intersecting_face_pairs(m, std::vector<char>(m.faces.size(), 0)).empty());
   }
 }
 

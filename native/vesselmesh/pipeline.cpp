@@ -46,7 +46,7 @@ std::string Verification::problem() const {
   if (t.components != expected_components)
     problems.push_back("it has " + std::to_string(t.components) + " pieces for the centerline's " +
                        std::to_string(expected_components) + " components");
-  if (crossings_checked && crossing_pairs > pairs_in_overlapping_tubes)
+  if ((crossings_checked || crossings_checked_near_joints) && crossing_pairs > pairs_in_overlapping_tubes)
     problems.push_back("it crosses itself at " + std::to_string(crossing_pairs - pairs_in_overlapping_tubes) +
                        " triangle pairs where the input's tubes do not overlap");
   std::string out;
@@ -66,24 +66,35 @@ SizeLimitError too_large(int64_t triangles, bool at_least, int64_t sections, con
                         "(--max-triangles)");
 }
 
-bool checks_crossings(const TriMesh& mesh, Verify how) {
-  return how == Verify::full ||
-         (how == Verify::automatic && static_cast<int64_t>(mesh.faces.size()) <= kVerifyCrossingsUpTo);
+/// How much of a surface of `faces` triangles is checked for crossings.
+enum class CrossingCheck { none, near_joints, everywhere };
+CrossingCheck crossing_check(int64_t faces, Verify how) {
+  if (how == Verify::full || (how == Verify::automatic && faces <= kVerifyCrossingsUpTo))
+    return CrossingCheck::everywhere;
+  if (how == Verify::automatic && faces <= kVerifyNearJointsUpTo) return CrossingCheck::near_joints;
+  return CrossingCheck::none;
 }
 
-Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Verify how) {
+/// `near_joints`: faces_near_joints of the mesh where only those are checked for crossings, else empty.
+Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Verify how,
+                    const std::vector<char>& near_joints) {
   Verification v;
   v.topology = check_topology(mesh);
   v.expected_components = centerline.components;
   v.loops = centerline.loops;
-  v.crossings_checked = checks_crossings(mesh, how);
-  if (v.crossings_checked) {
-    const IntersectionReport x = find_self_intersections(mesh, &centerline);
+  const CrossingCheck check = crossing_check(static_cast<int64_t>(mesh.faces.size()), how);
+  v.crossings_checked = check == CrossingCheck::everywhere;
+  v.crossings_checked_near_joints = check == CrossingCheck::near_joints;
+  if (check != CrossingCheck::none) {
+    const IntersectionReport x = find_self_intersections(mesh, &centerline, near_joints);
     v.crossing_pairs = x.pairs;
     v.pairs_in_overlapping_tubes = x.pairs_in_overlapping_tubes;
   }
   return v;
 }
+
+/// Whether the surface crosses itself where the input's tubes do not overlap.
+bool crosses(const Verification& v) { return v.crossing_pairs > v.pairs_in_overlapping_tubes; }
 
 /// About how many sections the tile stage places on the centerline: one a diameter along every edge, and a
 /// quarter more for the joints' squares and the sections crowding in bends (the shared sets have 0.7 to 1.5
@@ -101,23 +112,118 @@ Vec3 centroid(const TriMesh& mesh, int32_t f) {
   return (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3;
 }
 
+using Clock = std::chrono::steady_clock;
+
+/// Adds a stage's time since `start` to `result`; a stage run again (another build, below) adds its time to
+/// the first run's.
+void record(MeshResult& result, const char* stage, Clock::time_point start, std::size_t vertices,
+            std::size_t faces) {
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const auto same = std::find_if(result.stages.begin(), result.stages.end(),
+                                 [&](const StageStats& s) { return s.stage == stage; });
+  const StageStats now{stage, seconds, static_cast<int64_t>(vertices), static_cast<int64_t>(faces)};
+  if (same == result.stages.end()) return result.stages.push_back(now);
+  *same = {now.stage, same->seconds + seconds, now.vertices, now.faces};
+}
+
+/// What one build of the surface needs besides the options: the centerline it follows and its tubes (built
+/// on first use).
+struct Tubes {
+  const CenterlineGraph& centerline;
+  std::optional<RoundCones>& cones;
+  const RoundCones& get() {
+    if (!cones) cones.emplace(centerline);
+    return *cones;
+  }
+};
+
+/// What a build says of itself besides its surface and check.
+struct Built {
+  std::vector<char> near_joints;  ///< faces_near_joints where only those were checked for crossings
+  std::vector<Vec3> lost_loops;   ///< where the tile stage gave a loop's tunnel up (BaseMesh::lost_loops)
+};
+
+/// Builds the surface from the tile stage on into `result`: tiled, triangulated, subdivided, rounded,
+/// fitted onto the tubes, rounded to float and checked, with the fit's moves taken back where it crosses
+/// itself. With `tubes_curvature`, reads the tubes' own curvature into it before rounding.
+Built build_surface(Tubes tubes, const TileOptions& tile, const MeshOptions& options,
+                    TubeCurvature* tubes_curvature, MeshResult& result) {
+  auto start = Clock::now();
+  const int64_t per_base_triangle = int64_t{1} << (2 * options.subdivision.levels);
+  BaseMesh base;
+  try {
+    base = tile_base_mesh(tubes.centerline, tile);
+    if (options.sides == 8)
+      base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
+  } catch (const SizeLimitError&) {
+    throw too_large(2 * options.sides * per_base_triangle * tile.max_sections, true, tile.max_sections,
+                    options);
+  }
+  const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
+  if (base_triangles * per_base_triangle > options.max_triangles)
+    throw too_large(base_triangles * per_base_triangle, false, base.sections, options);
+  record(result, "tile", start, base.vertices.size(), base.quads.size() + base.triangles.size());
+  result.sections = base.sections;
+  result.joint_patches = base.joints;
+  result.absorbed_branches = base.absorbed_branches;
+  result.tunnels = base.tunnels;
+  Built built{{}, std::move(base.lost_loops)};
+
+  start = Clock::now();
+  TriMesh& mesh = result.mesh;
+  mesh = triangulate(base);
+  // Only the curvature reads the axis's shape: without it, subdivision carries 5 properties instead of 12.
+  if (!tubes_curvature) drop_tube_axis_properties(mesh, kRoundAxisProperties);
+  record(result, "triangulate", start, mesh.vertices.size(), mesh.faces.size());
+
+  start = Clock::now();
+  SubdividedMesh subdivided = subdivide(mesh, options.subdivision);
+  mesh = std::move(subdivided.mesh);
+  result.transition = std::move(subdivided.transition);
+  result.tagged = std::move(subdivided.tagged);
+  record(result, "subdivide", start, mesh.vertices.size(), mesh.faces.size());
+
+  start = Clock::now();
+  const CrossingCheck check = crossing_check(static_cast<int64_t>(mesh.faces.size()), options.verify);
+  if (check == CrossingCheck::near_joints) built.near_joints = faces_near_joints(mesh);
+  const std::vector<char>& near_joints = built.near_joints;
+  // The tubes' own curvature, read before rounding takes the tube properties off (tube_curvature.hpp).
+  if (tubes_curvature) *tubes_curvature = tube_curvature(mesh);
+  result.rounded_vertices = round_tubes(mesh).moved;
+  record(result, "round", start, mesh.vertices.size(), mesh.faces.size());
+  // Where the surface is checked for crossings, the fit's moves can be taken back where faces cross.
+  const bool fits = options.fit != Fit::none;
+  const std::vector<Vec3> before_fit =
+      fits && check != CrossingCheck::none ? mesh.vertices : std::vector<Vec3>();
+  if (fits) {
+    start = Clock::now();
+    const FitStats fit = fit_to_tubes(mesh, tubes.get(), options.fit);
+    result.fitted_vertices = fit.moved;
+    result.parted_vertices = fit.parted;
+    record(result, "fit", start, mesh.vertices.size(), mesh.faces.size());
+  }
+  // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
+  // they hold.
+  for (Vec3& p : mesh.vertices) p = p.cast<float>().cast<double>();
+  start = Clock::now();
+  result.verification = verify(mesh, tubes.centerline, options.verify, near_joints);
+  result.taken_back_vertices = 0;
+  if (!before_fit.empty() && crosses(result.verification)) {
+    result.taken_back_vertices = take_back_crossing_moves(mesh, before_fit, near_joints);
+    if (result.taken_back_vertices > 0)
+      result.verification = verify(mesh, tubes.centerline, options.verify, near_joints);
+  }
+  record(result, "verify", start, mesh.vertices.size(), mesh.faces.size());
+  return built;
+}
+
 }  // namespace
 
 MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& options) {
   validate(options);
   if (graph.edges.empty()) throw std::invalid_argument("the centerline has no edges");
-  using Clock = std::chrono::steady_clock;
   MeshResult result;
-  // A stage run again (another try with full squares, below) adds its time to the first run's.
-  auto record = [&](const char* stage, Clock::time_point start, int64_t vertices, int64_t faces) {
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const auto same = std::find_if(result.stages.begin(), result.stages.end(),
-                                   [&](const StageStats& s) { return s.stage == stage; });
-    if (same == result.stages.end()) return result.stages.push_back({stage, seconds, vertices, faces});
-    same->seconds += seconds, same->vertices = vertices, same->faces = faces;
-  };
-
-  auto start = Clock::now();
+  const auto start = Clock::now();
   // The tubes the surface follows, built once for the separate stage and the fit, and again only where
   // the separate stage left terminal branches out or moved the centerline.
   std::optional<RoundCones> cones;
@@ -135,124 +241,62 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     result.crossings_left = separation.left;
     result.tangle = separation.tangle;
     if (separation.moved_points > 0) centerline = &separation.graph, cones.emplace(separation.graph);
-    record("separate", start, static_cast<int64_t>(graph.points.size()),
-           static_cast<int64_t>(graph.edges.size()));
+    record(result, "separate", start, graph.points.size(), graph.edges.size());
   }
+  Tubes tubes{*centerline, cones};
 
   TileOptions tile;
   tile.sampling = options.sampling;
   tile.caps = options.caps;
   tile.radius_scale = subdivision_radius_scale(4);  // octagons are tiled as squares (tile/octagons.hpp)
   // Every section brings at least two triangles a side, and each level four times as many.
-  const int64_t per_base_triangle = int64_t{1} << (2 * options.subdivision.levels);
-  const int64_t per_section = 2 * options.sides * per_base_triangle;
+  const int64_t per_section = 2 * options.sides * (int64_t{1} << (2 * options.subdivision.levels));
   tile.max_sections = std::max<int64_t>(2, options.max_triangles / per_section);
-  // Small squares on every patch where the surface will be checked for crossings (tile step 7 of
-  // docs/pipeline.md): where it crosses itself outside overlapping tubes, the patches near the crossing
-  // are tried again with full squares.
-  tile.small_squares = options.verify == Verify::full ||
-                       (options.verify == Verify::automatic &&
-                        per_section * sections_estimate(*centerline) <= kVerifyCrossingsUpTo);
-  TubeCurvature tubes;
+  // Small squares on every patch where the surface will be checked for crossings, everywhere or near its
+  // joints (tile step 7 of docs/pipeline.md): where it crosses itself outside overlapping tubes, or the tile
+  // stage gave a loop up, the patches near there are built again with full squares.
+  tile.small_squares = crossing_check(static_cast<int64_t>(per_section * sections_estimate(*centerline)),
+                                      options.verify) != CrossingCheck::none;
+  TubeCurvature tube_curvature;
+  int64_t genus_lost_at = -1;  // the genus of the last build that lost a loop
   for (int tries = 1;; ++tries) {
-    start = Clock::now();
-    BaseMesh base;
-    try {
-      base = tile_base_mesh(*centerline, tile);
-      if (options.sides == 8)
-        base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
-    } catch (const SizeLimitError&) {
-      throw too_large(per_section * tile.max_sections, true, tile.max_sections, options);
-    }
-    const auto base_triangles = static_cast<int64_t>(2 * base.quads.size() + base.triangles.size());
-    if (base_triangles * per_base_triangle > options.max_triangles)
-      throw too_large(base_triangles * per_base_triangle, false, base.sections, options);
-    record("tile", start, static_cast<int64_t>(base.vertices.size()),
-           static_cast<int64_t>(base.quads.size() + base.triangles.size()));
-    result.sections = base.sections;
-    result.joint_patches = base.joints;
-    result.absorbed_branches = base.absorbed_branches;
-    result.tunnels = base.tunnels;
-
-    start = Clock::now();
-    result.mesh = triangulate(base);
-    // Only the curvature reads the axis's shape: without it, subdivision carries 5 properties instead of 12.
-    if (!options.curvature) drop_tube_axis_properties(result.mesh, kRoundAxisProperties);
-    record("triangulate", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
-
-    start = Clock::now();
-    SubdividedMesh subdivided = subdivide(result.mesh, options.subdivision);
-    result.mesh = std::move(subdivided.mesh);
-    result.transition = std::move(subdivided.transition);
-    result.tagged = std::move(subdivided.tagged);
-    record("subdivide", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
-    // Small squares where the estimate let them through but the surface turned out too large to be checked:
-    // built again as where it is never checked.
-    if (tile.small_squares && !checks_crossings(result.mesh, options.verify)) {
-      tile.small_squares = false;
-      ++result.full_square_tries;
-      continue;
-    }
-    start = Clock::now();
-    // The tubes' own curvature, read before rounding takes the tube properties off (tube_curvature.hpp).
-    if (options.curvature) tubes = tube_curvature(result.mesh);
-    result.rounded_vertices = round_tubes(result.mesh).moved;
-    record("round", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
-    // Where the surface is checked for crossings, the fit's moves can be taken back where faces cross.
-    const bool fits = options.fit != Fit::none;
-    const std::vector<Vec3> before_fit =
-        fits && checks_crossings(result.mesh, options.verify) ? result.mesh.vertices : std::vector<Vec3>();
-    if (fits) {
-      start = Clock::now();
-      if (!cones) cones.emplace(*centerline);
-      const FitStats fit = fit_to_tubes(result.mesh, *cones, options.fit);
-      result.fitted_vertices = fit.moved;
-      result.parted_vertices = fit.parted;
-      record("fit", start, static_cast<int64_t>(result.mesh.vertices.size()),
-             static_cast<int64_t>(result.mesh.faces.size()));
-    }
-    // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
-    // they hold.
-    for (Vec3& p : result.mesh.vertices) p = p.cast<float>().cast<double>();
-    start = Clock::now();
-    result.verification = verify(result.mesh, *centerline, options.verify);
-    const auto crosses = [&] {
-      return result.verification.crossing_pairs > result.verification.pairs_in_overlapping_tubes;
-    };
-    result.taken_back_vertices = 0;
-    if (!before_fit.empty() && crosses()) {
-      result.taken_back_vertices = take_back_crossing_moves(result.mesh, before_fit);
-      if (result.taken_back_vertices > 0)
-        result.verification = verify(result.mesh, *centerline, options.verify);
-    }
-    record("verify", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
+    const Built built =
+        build_surface(tubes, tile, options, options.curvature ? &tube_curvature : nullptr, result);
     if (!tile.small_squares) break;
-    const bool lost_a_loop = result.verification.topology.genus < result.verification.loops;
-    if (lost_a_loop || (crosses() && tries == kSmallSquareTries)) {
-      // A loop lost (vesselgraph-demo at level 0), or crossings that full squares round them did not part:
-      // small squares only where the surface is never checked, on patches along a vessel.
+    const Verification& v = result.verification;
+    const bool checked = v.crossings_checked || v.crossings_checked_near_joints;
+    const bool lost = v.topology.genus < v.loops;
+    if (!checked || (lost && (built.lost_loops.empty() || v.topology.genus <= genus_lost_at)) ||
+        ((crosses(v) || lost) && tries == kSmallSquareTries)) {
+      // Too large to be checked after all, a loop lost other than where the tile stage gave one up or
+      // still lost with full squares there, or crossings that full squares round them did not part: small
+      // squares only on patches along a vessel, as where the surface is never checked.
       tile.small_squares = false;
     } else {
-      if (!crosses()) break;
-      for (const auto& pair : intersecting_face_pairs(result.mesh))
-        for (int32_t f : pair) tile.full_squares_near.push_back(centroid(result.mesh, f));
+      if (!crosses(v) && !lost) break;
+      if (crosses(v))
+        for (const auto& pair : intersecting_face_pairs(result.mesh, built.near_joints))
+          for (int32_t f : pair) tile.full_squares_near.push_back(centroid(result.mesh, f));
+      // vesselgraph-demo at levels 0 and 1 lost a loop whose joints merged otherwise with small squares
+      // round them, and whose tunnel then could not open.
+      if (lost) {
+        genus_lost_at = v.topology.genus;
+        tile.full_squares_near.insert(tile.full_squares_near.end(), built.lost_loops.begin(),
+                                      built.lost_loops.end());
+      }
     }
     ++result.full_square_tries;
   }
+  result.small_squares = tile.small_squares;
   if (options.curvature) {
-    start = Clock::now();
-    VertexCurvature curvature = estimate_curvature(result.mesh, needs_fit(tubes));
-    blend_tube_curvature(curvature, tubes);
-    for (VertexProperty& p : curvature_properties(curvature)) result.mesh.vertex_properties.push_back(std::move(p));
-    if (!cones) cones.emplace(*centerline);
-    const std::vector<double> radius = local_radius(result.mesh.vertices, *cones);
+    const auto curvature_start = Clock::now();
+    VertexCurvature curvature = estimate_curvature(result.mesh, needs_fit(tube_curvature));
+    blend_tube_curvature(curvature, tube_curvature);
+    for (VertexProperty& p : curvature_properties(curvature))
+      result.mesh.vertex_properties.push_back(std::move(p));
+    const std::vector<double> radius = local_radius(result.mesh.vertices, tubes.get());
     result.mesh.vertex_properties.push_back({"radius", std::vector<float>(radius.begin(), radius.end())});
-    record("curvature", start, static_cast<int64_t>(result.mesh.vertices.size()),
-           static_cast<int64_t>(result.mesh.faces.size()));
+    record(result, "curvature", curvature_start, result.mesh.vertices.size(), result.mesh.faces.size());
   }
   if (separation.moved_points > 0)
     result.separated = std::move(separation.graph);
@@ -280,6 +324,7 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["parted_vertices"] = result.parted_vertices;
   j["taken_back_vertices"] = result.taken_back_vertices;
   j["full_square_tries"] = result.full_square_tries;
+  j["small_squares"] = result.small_squares;
   j["transition_triangles"] = std::count(result.transition.begin(), result.transition.end(), 1);
   j["tagged_fraction"] = result.tagged;
   const Verification& v = result.verification;
@@ -289,12 +334,14 @@ std::string stats_json(const MeshResult& result, int indent) {
                    {"genus", v.topology.genus},
                    {"loops", v.loops},
                    {"crossings_checked", v.crossings_checked},
+                   {"crossings_checked_near_joints", v.crossings_checked_near_joints},
                    {"crossing_pairs", v.crossing_pairs},
                    {"pairs_in_overlapping_tubes", v.pairs_in_overlapping_tubes},
                    {"problem", v.problem()}};
   double total = 0;
   for (const StageStats& s : result.stages) {
-    j["stages"].push_back({{"stage", s.stage}, {"seconds", s.seconds}, {"vertices", s.vertices}, {"faces", s.faces}});
+    j["stages"].push_back(
+        {{"stage", s.stage}, {"seconds", s.seconds}, {"vertices", s.vertices}, {"faces", s.faces}});
     total += s.seconds;
   }
   j["seconds"] = total;

@@ -23,13 +23,16 @@ namespace vesselmesh {
 
 /// What the pipeline checks of its own surface before handing it out: `automatic` checks that it is a
 /// closed manifold and, up to kVerifyCrossingsUpTo triangles (where the search costs about as much as
-/// the meshing), that it does not cross itself; `full` checks crossings whatever the size; `topology`
-/// never does.
+/// the meshing), that it does not cross itself; up to kVerifyNearJointsUpTo, that it does not cross itself
+/// near its joints and caps (round/round.hpp, faces_near_joints), where the patches' shapes show; `full`
+/// checks crossings everywhere whatever the size; `topology` never does.
 enum class Verify { automatic, full, topology };
 constexpr int64_t kVerifyCrossingsUpTo = 1'000'000;
+constexpr int64_t kVerifyNearJointsUpTo = 16'000'000;
 
 /// Builds of the surface with small squares, each with full squares round where the one before crossed itself
-/// (MeshResult::full_square_tries); then one as where crossings are not checked, if it still crosses.
+/// (MeshResult::full_square_tries); then one as where crossings are not checked, if it still crosses. Where
+/// the surface is too large to be checked everywhere, they are checked near its joints and caps.
 constexpr int kSmallSquareTries = 3;
 
 struct MeshOptions {
@@ -54,7 +57,8 @@ struct Verification {
   TopologyReport topology;
   int64_t expected_components = 0;  ///< the centerline's components
   int64_t loops = 0;                ///< the centerline's loops (a lost one is no failure: docs/pipeline.md)
-  bool crossings_checked = false;
+  bool crossings_checked = false;              ///< everywhere
+  bool crossings_checked_near_joints = false;  ///< only near the joints and caps (kVerifyNearJointsUpTo)
   int64_t crossing_pairs = 0;              ///< self-intersecting triangle pairs (when checked)
   int64_t pairs_in_overlapping_tubes = 0;  ///< of those, where the input's tubes themselves overlap
   /// Empty when the surface is a closed manifold with one piece per component and crosses itself only
@@ -93,6 +97,9 @@ struct MeshResult {
   /// on patches along a vessel, as where crossings are not checked, where it lost a loop, still crossed after
   /// those tries, or came out too large to be checked.
   int64_t full_square_tries = 0;
+  /// Whether every joint patch has small squares, but those near where a build crossed itself or lost a loop
+  /// (tile step 7); false where only the patches along a vessel have them.
+  bool small_squares = false;
   Verification verification;
 };
 

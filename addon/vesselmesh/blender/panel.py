@@ -97,7 +97,11 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
         if verified:
             col.label(text=f"Fails its own check: {verified['problem']}" if verified["problem"] else
                       f"Checked: closed, genus {verified['genus']}"
-                      + (", no crossing" if verified["crossings_checked"] and not verified["crossing_pairs"] else ""))
+                      + ("" if verified["crossing_pairs"] else
+                         ", no crossing" if verified["crossings_checked"] else
+                         # .get: the statistics of a surface made before the check near joints lack it
+                         ", no crossing near its joints" if verified.get("crossings_checked_near_joints") else
+                         ""))
         if stats.get("hidden_terminals"):
             col.label(text=f"Twigs wholly inside other vessels left out: {stats['hidden_terminals']:,}")
         if stats.get("separated_points"):

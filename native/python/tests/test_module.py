@@ -114,11 +114,16 @@ def test_mesh_over_the_triangle_limit_stops_before_the_work_saying_what_to_chang
 
 def test_mesh_reports_its_own_check_of_the_surface(project_data):
     graph = vm.Graph.read(str(project_data / "bifurcation.swc"))
-    verified = vm.mesh(graph)["stats"]["verified"]
+    stats = vm.mesh(graph)["stats"]
+    verified = stats["verified"]
     assert verified["closed_manifold"] and verified["crossings_checked"]
+    assert not verified["crossings_checked_near_joints"]  # only over a million triangles
     assert verified["components"] == verified["expected_components"] == 1
     assert verified["problem"] == ""
-    assert not vm.mesh(graph, verify="topology")["stats"]["verified"]["crossings_checked"]
+    assert stats["small_squares"]  # checked for crossings: every patch has small squares
+    unchecked = vm.mesh(graph, verify="topology")["stats"]
+    assert not unchecked["verified"]["crossings_checked"]
+    assert not unchecked["verified"]["crossings_checked_near_joints"] and not unchecked["small_squares"]
 
 
 def test_edge_index_out_of_range_is_an_input_error():

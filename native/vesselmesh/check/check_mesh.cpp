@@ -251,9 +251,10 @@ TopologyReport check_topology(const TriMesh& mesh) {
   return r;
 }
 
-IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline) {
+IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline,
+                                           const std::vector<char>& among) {
   require_valid_indices(mesh);
-  const std::vector<std::array<int32_t, 2>> hits = intersecting_face_pairs(mesh);
+  const std::vector<std::array<int32_t, 2>> hits = intersecting_face_pairs(mesh, among);
   IntersectionReport r;
   r.pairs = static_cast<int64_t>(hits.size());
   r.examples.assign(hits.begin(),

@@ -109,7 +109,9 @@ TopologyReport check_topology(const TriMesh& mesh);
 /// cones overlap: the axes' closest points are nearer than the sum of the radii there, leaving out
 /// the parts within 3 radii of a joint the two branches share (where they are meant to meet); or near
 /// two edges of one branch whose cones overlap at parts more than 3 radii apart along the branch.
-IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr);
+/// With `among` (a flag per face), only the pairs with a flagged face (intersecting_face_pairs).
+IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr,
+                                           const std::vector<char>& among = {});
 QualityReport triangle_quality(const TriMesh& mesh);
 /// Signed distance of each vertex to the union of the centerline edges' round cones (two spheres and
 /// their tangent cone; the minimum over edges), divided by the local radius (that of the cone where

@@ -215,11 +215,12 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   return stats;
 }
 
-int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before) {
+int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
+                                 const std::vector<char>& among) {
   int64_t taken_back = 0;
   for (int round = 0; round < kTakeBackRounds; ++round) {
     int64_t now = 0;
-    for (const auto& pair : intersecting_face_pairs(mesh))
+    for (const auto& pair : intersecting_face_pairs(mesh, among))
       for (int32_t f : pair)
         for (int32_t v : mesh.faces[f]) {
           const Vec3 back = before[v].cast<float>().cast<double>();

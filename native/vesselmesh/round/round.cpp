@@ -26,4 +26,14 @@ GuardedMoves round_tubes(TriMesh& mesh) {
   return move_without_folding(mesh, std::move(move), radius);
 }
 
+std::vector<char> faces_near_joints(const TriMesh& mesh) {
+  const std::vector<float>* weight = find_tube_axis_properties(mesh, kRoundAxisProperties)[4];
+  if (weight == nullptr) return {};
+  std::vector<char> near(mesh.faces.size());
+  for (std::size_t f = 0; f < near.size(); ++f)
+    near[f] =
+        std::any_of(mesh.faces[f].begin(), mesh.faces[f].end(), [&](int32_t v) { return (*weight)[v] < 1; });
+  return near;
+}
+
 }  // namespace vesselmesh

@@ -20,4 +20,9 @@ namespace vesselmesh {
 /// properties is left as it is.
 GuardedMoves round_tubes(TriMesh& mesh);
 
+/// Per face, 1 where a corner is not wholly on a tube (its tube weight is below 1: a joint's patch, a cap and
+/// the pieces of tube next to them), where the patches' shapes show; 0 elsewhere. Empty for a mesh without
+/// the tube properties.
+std::vector<char> faces_near_joints(const TriMesh& mesh);
+
 }  // namespace vesselmesh

@@ -149,6 +149,7 @@ void Tiler::find_patches() {
           continue;
         }
         if (tunnel_[b].turns < kTurns && turn_tunnel(b, p, kept)) continue;
+        mesh_.lost_loops.push_back(g_.points[p.joints[0]]);
         kind_[b] = Kind::swallowed;
         --mesh_.tunnels;
       }

@@ -33,7 +33,7 @@ struct TileOptions {
   int64_t max_sections = std::numeric_limits<int64_t>::max();
   /// Every joint patch's squares small, not only those of a patch along a vessel (tile_detail::kSmallSquare),
   /// but for the patches with a joint or a branch within tile_detail::kNearCrossing radii of a place in
-  /// `full_squares_near`: where a surface with small squares crossed itself (pipeline.cpp).
+  /// `full_squares_near`: where a surface with small squares crossed itself or lost a loop (pipeline.cpp).
   bool small_squares = false;
   std::vector<Vec3> full_squares_near;
 };
@@ -82,6 +82,7 @@ struct BaseMesh {
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
   int64_t tunnels = 0;                        ///< of those, loops closed inside a patch, through it
+  std::vector<Vec3> lost_loops;               ///< a joint of each patch that gave a loop's tunnel up
 };
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options);

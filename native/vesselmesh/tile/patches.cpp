@@ -145,6 +145,7 @@ bool Tiler::build_patch(const Patch& p) {
   const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
                                    [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
   if (tunnel != p.ends.end()) {
+    mesh_.lost_loops.push_back(g_.points[p.joints[0]]);
     kind_[ends_[*tunnel].branch] = Kind::swallowed;
     --mesh_.tunnels;
     return false;
