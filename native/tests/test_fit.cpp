@@ -4,12 +4,15 @@
 // distance and direction that it relies on.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "fixtures.hpp"
 #include "surfaces.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/fit/fit.hpp"
+#include "vesselmesh/geometry/guarded_moves.hpp"
 #include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/pipeline.hpp"
 
@@ -266,6 +269,40 @@ TEST(Fit, AMoveThatWouldCarryATriangleThroughAnotherPartOfTheSurfaceIsHeldBack) 
   EXPECT_EQ(find_self_intersections(mesh).pairs, 0);
 }
 
+TEST(GuardedMoves, NoTriangleTurnsOverAsTheFilesHoldItFarFromTheOrigin) {
+  // A fan of six triangles a few float steps wide, 1000 units from the origin, whose centre moves close
+  // to where one of them turns over by a right angle: judged in double, the guard lets moves through that
+  // rounding to float then turns over. What it leaves must hold as written.
+  const Vec3 origin(1000.3, -1000.7, 1000.1);
+  const double step = 1000.0 * std::numeric_limits<float>::epsilon();  // a float's step there
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int turned = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    TriMesh mesh;
+    mesh.vertices.push_back(origin);
+    for (int k = 0; k < 6; ++k) {
+      const double a = 2 * M_PI * k / 6 + 0.2 * unit(random);
+      mesh.vertices.push_back(origin + 40 * step * Vec3(std::cos(a), std::sin(a), 0.1 * unit(random)));
+    }
+    for (int32_t k = 0; k < 6; ++k) mesh.faces.push_back({0, 1 + k, 1 + (k + 1) % 6});
+    for (Vec3& p : mesh.vertices) p = rounded_to_float(p);
+    std::vector<Vec3> before;
+    for (const Tri& t : mesh.faces) before.push_back(face_normal(mesh.vertices, t));
+    // The centre moved beyond the middle of an outer edge and up, a step of noise either way.
+    const int32_t k = static_cast<int32_t>(trial % 6);
+    const Vec3 middle = 0.5 * (mesh.vertices[1 + k] + mesh.vertices[1 + (k + 1) % 6]);
+    std::vector<Vec3> move(mesh.vertices.size(), Vec3::Zero());
+    move[0] = (middle - origin) * (1 + 0.02 * unit(random)) + step * Vec3(unit(random), unit(random), 30);
+    move_without_folding(mesh, move, std::vector<double>(mesh.vertices.size(), 100 * step));
+    std::vector<Vec3> written;
+    for (const Vec3& p : mesh.vertices) written.push_back(rounded_to_float(p));
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      turned += face_normal(written, mesh.faces[f]).dot(before[f]) < 0;
+  }
+  EXPECT_EQ(turned, 0);
+}
+
 TEST(Fit, MovesAtTheCornersOfCrossingFacesAreTakenBackTheRestKept) {
   // The same two sheets, and a third far off: every vertex moved straight down onto the tube, the upper
   // sheet passes through the lower one; the third sheet's moves cross nothing and stay.
@@ -307,5 +344,6 @@ TEST(Fit, StageIsPartOfThePipelineAndCanBeLeftOut) {
   EXPECT_EQ(with.mesh.faces, without.mesh.faces);
   EXPECT_LT(largest_error(with.mesh, g), largest_error(without.mesh, g));
   // The surface's own check saw the coordinates every file and Blender hold: floats.
-  for (const Vec3& p : with.mesh.vertices) ASSERT_EQ(p, Vec3(p.cast<float>().cast<double>()));
+  for (const Vec3& p : with.mesh.vertices)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(p[k], static_cast<double>(static_cast<float>(p[k])));
 }

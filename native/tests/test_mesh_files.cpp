@@ -210,6 +210,19 @@ const std::string kTwoFacetStl =
     "    endloop\n  endfacet\n"
     "endsolid two\n";
 
+TEST(RoundedToFloat, EveryCoordinateIsTheFloatTheFilesHold) {
+  // Many points in a loop, as the pipeline rounds them: that is where GCC 12 vectorises x and y together.
+  std::vector<Vec3> points;
+  for (int i = 0; i < 1000; ++i) points.emplace_back(139.230488123 + 1e-3 * i, -39.76613 - 1e-3 * i, 0.1 * i);
+  std::vector<Vec3> rounded(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    rounded[i] = rounded_to_float(points[i] + Vec3(1e-7, 1e-7, 0));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::array<float, 3> expected = as_float(points[i] + Vec3(1e-7, 1e-7, 0));
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(rounded[i][k], static_cast<double>(expected[k])) << i << ", " << k;
+  }
+}
+
 TEST_F(MeshFiles, PlyRoundTripKeepsFloatPositionsAndIdenticalFaces) {
   for (const TriMesh& mesh : {octahedron(), cube()}) {
     const TriMesh read = round_trip(mesh, "mesh.ply");

@@ -204,7 +204,7 @@ Built build_surface(Tubes tubes, const TileOptions& tile, const MeshOptions& opt
   }
   // Every file and Blender hold the coordinates as floats: rounded here, what the check passes is what
   // they hold.
-  for (Vec3& p : mesh.vertices) p = p.cast<float>().cast<double>();
+  for (Vec3& p : mesh.vertices) p = rounded_to_float(p);
   start = Clock::now();
   result.verification = verify(mesh, tubes.centerline, options.verify, near_joints);
   result.taken_back_vertices = 0;

@@ -39,11 +39,13 @@ Coloring = namedtuple("Coloring", "map lo hi rgba")
 
 def robust_range(values, percentile=2.0):
     """(lo, hi): the percentile-th and (100 - percentile)-th percentiles, so that a few extreme vertices
-    (cap rims, joint creases) do not wash the rest out; widened when the values are all equal."""
-    lo, hi = (float(v) for v in np.percentile(values, [percentile, 100.0 - percentile]))
+    (cap rims, joint creases) do not wash the rest out; widened when the values are all equal. In float32,
+    as the surface's settings (Blender float properties) keep them: a value a hair from a step of the map
+    then takes the same colour when the surface is painted again from those settings."""
+    lo, hi = (float(np.float32(v)) for v in np.percentile(values, [percentile, 100.0 - percentile]))
     if hi <= lo:
         pad = max(abs(lo), 1.0) * 0.5
-        lo, hi = lo - pad, hi + pad
+        lo, hi = float(np.float32(lo - pad)), float(np.float32(hi + pad))
     return lo, hi
 
 

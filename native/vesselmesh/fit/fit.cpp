@@ -223,7 +223,7 @@ int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
     for (const auto& pair : intersecting_face_pairs(mesh, among))
       for (int32_t f : pair)
         for (int32_t v : mesh.faces[f]) {
-          const Vec3 back = before[v].cast<float>().cast<double>();
+          const Vec3 back = rounded_to_float(before[v]);
           if (mesh.vertices[v] != back) mesh.vertices[v] = back, ++now;
         }
     if (now == 0) break;

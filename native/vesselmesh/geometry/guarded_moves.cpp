@@ -211,8 +211,10 @@ GuardedMoves move_without_folding(TriMesh& mesh, std::vector<Vec3> move, const s
       long_faces.push_back(static_cast<int32_t>(f));
   }
 
-  std::vector<Vec3> moved = mesh.vertices;
-  for (std::size_t v = 0; v < n; ++v) moved[v] += move[v];
+  // The tests judge the surface as it is written, in floats: rounding can turn a triangle over that a move
+  // left almost flat.
+  std::vector<Vec3> moved(n);
+  for (std::size_t v = 0; v < n; ++v) moved[v] = rounded_to_float(mesh.vertices[v] + move[v]);
   const std::vector<std::array<int32_t, 2>> candidates = crossing_candidates(mesh, moved, long_faces);
   // Each round halves the moves of the corners of every folded or crossing triangle (once per round);
   // on the kHalvings-th cut a vertex stays where it was. Only triangles with a corner that the last round
@@ -230,7 +232,7 @@ GuardedMoves move_without_folding(TriMesh& mesh, std::vector<Vec3> move, const s
     for (int32_t v : bad) {
       if (move[v] == Vec3::Zero()) continue;
       move[v] = ++halved[v] < kHalvings ? Vec3(0.5 * move[v]) : Vec3::Zero();
-      moved[v] = mesh.vertices[v] + move[v];
+      moved[v] = rounded_to_float(mesh.vertices[v] + move[v]);
       dirty[v] = 1;
       changed = true;
     }

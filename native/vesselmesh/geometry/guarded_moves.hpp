@@ -22,6 +22,8 @@ struct GuardedMoves {
 /// tested against other triangles (exactly, against every triangle their swept box meets); shorter ones
 /// only bend the triangles round them, which the fold test watches, though together they can add a few
 /// crossings where two surfaces already cross.
+/// Every position it leaves is rounded to float, as files and Blender hold it, and the tests are made on
+/// those: rounding can turn over a triangle that a move left almost flat.
 GuardedMoves move_without_folding(TriMesh& mesh, std::vector<Vec3> move, const std::vector<double>& radius);
 
 /// The cross product of triangle t's edges (its normal, twice its area long).

@@ -22,6 +22,18 @@ struct VertexProperty {
   std::vector<float> values;  ///< one per vertex
 };
 
+/// p with each coordinate rounded to float, as every file and Blender hold it. Through volatile floats: GCC
+/// 12 at -O2 and above compiles p.cast<float>().cast<double>(), and the same written per coordinate, to a
+/// plain copy of the two coordinates it vectorises together (x and y), rounding z alone.
+inline Vec3 rounded_to_float(const Vec3& p) {
+  Vec3 out;
+  for (int k = 0; k < 3; ++k) {
+    const volatile float f = static_cast<float>(p[k]);
+    out[k] = f;
+  }
+  return out;
+}
+
 struct TriMesh {
   std::vector<Vec3> vertices;                   ///< V positions
   std::vector<Tri> faces;                       ///< F triangles, counter-clockwise seen from outside
