@@ -55,10 +55,9 @@ constexpr int kTakeBackRounds = 4;
 /// Takes the fit's moves back where faces of `mesh` cross each other: the corners of every crossing face
 /// that the fit moved go back to where they stood before it (`before`, one position per vertex, rounded to
 /// float as the mesh's are), round after round until no face crosses, none of their corners moved, or
-/// kTakeBackRounds are done. The fit's guard tests its moves in double; two folds it leaves a float's
-/// step apart cross once the coordinates are rounded, as every file and Blender hold them. With `among` (a
-/// flag per face), only where a flagged face crosses (intersecting_face_pairs). Returns how many vertices
-/// went back.
+/// kTakeBackRounds are done. The fit's guard tests only its longer moves against other triangles; shorter
+/// ones together can still make faces cross (guarded_moves.hpp). With `among` (a flag per face), only where
+/// a flagged face crosses (intersecting_face_pairs). Returns how many vertices went back.
 int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
                                  const std::vector<char>& among = {});
 
