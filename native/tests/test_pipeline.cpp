@@ -327,13 +327,18 @@ TEST(Pipeline, TwigsHiddenInsideOtherVesselsAreDroppedAndTheSurfaceIsUncrossed) 
 }
 
 TEST(Pipeline, RadiusScaleMakesSubdividedTubesFaithful) {
-  // A straight tube, away from its caps, sits at the centerline radius at every offered level.
+  // A straight tube, away from its caps, sits at the centerline radius at every offered level: its faces
+  // straddle the circle and its vertices lie within 2 % of it. At level 0 the octagons' faces lie 6.9 %
+  // inside the circle through their corners: the vertices go out by as much as the fit lifts them (3 %),
+  // and the faces come within 4.5 % (3.9 %).
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::straight(40, scale));
     for (int levels = 0; levels <= 4; ++levels) {
       const FidelityReport f = radius_fidelity(mesh_at(g, levels).mesh, g);
-      EXPECT_LT(f.abs_relative_error.median, 0.02) << "level " << levels << " scale " << scale;
-      EXPECT_LT(std::abs(f.relative_error.mean), 0.02) << "level " << levels << " scale " << scale;
+      const std::string what = "level " + std::to_string(levels) + " scale " + std::to_string(scale);
+      EXPECT_LT(f.centroid_error.median, levels == 0 ? 0.045 : 0.01) << what;
+      EXPECT_LT(f.abs_relative_error.median, levels == 0 ? 0.0301 : 0.02) << what;
+      EXPECT_LT(std::abs(f.relative_error.mean), levels == 0 ? 0.0301 : 0.02) << what;
     }
   }
 }

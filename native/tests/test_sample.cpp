@@ -63,15 +63,16 @@ TEST(Sample, StraightConeTakesFewSectionsAndStaysOnItsTube) {
 }
 
 // Points 25 radii apart turning 0.1° each (a circle of 14,000 radii): the tube straight from point to point
-// stays within 2 % of the radius of the tracing's cones, and a tracing of 80 points takes no more sections
-// than points (Eq. 1 alone: 12 a point). The graded ends cost about a dozen: 40 points take 43.
+// stays within 2 % of the radius of the tracing's cones (its faces' centroids; the vertices, lifted so that
+// the faces straddle the tubes, within 3 %), and a tracing of 80 points takes no more sections than points
+// (Eq. 1 alone: 12 a point). The graded ends cost about a dozen: 40 points take 43.
 TEST(Sample, GentlyCurvingTracingWithPointsTwentyFiveRadiiApartTakesNoMoreSectionsThanPoints) {
   const int points = 80;
   for (double scale : kScales) {
     const auto [sections, f] = traced_surface(points, 0.1, scale);
     EXPECT_LE(sections, points) << "scale " << scale;
-    EXPECT_LT(f.abs_relative_error.p95, 0.02) << "scale " << scale;
-    EXPECT_LT(f.centroid_error.p95, 0.03) << "scale " << scale;
+    EXPECT_LT(f.centroid_error.p95, 0.02) << "scale " << scale;
+    EXPECT_LT(f.abs_relative_error.p95, 0.03) << "scale " << scale;
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "vesselmesh/geometry/guarded_moves.hpp"
@@ -14,21 +15,28 @@ namespace vesselmesh {
 namespace {
 
 /// τ: how far from the tubes' surface, in local radii, a vertex far from it is left (see fit_to_tubes).
-constexpr double kKeep = 0.03;
+constexpr double kKeep = 0.01;
 /// Vertices closer to the tubes' surface than this, in local radii, stay: their move, (d − τr·tanh(d/τr)),
-/// would be below 0.2 % of the radius.
-constexpr double kLeast = 0.02;
+/// would be below 0.1 % of the radius.
+constexpr double kLeast = 0.007;
+/// How far off the tubes, in local radii, the straddle may take a vertex (straddle_lifts): a face of a ring
+/// of 16 sides has its centroid 1.7 % inside the circle through its corners, one of 8 sides 6.9 %.
+constexpr double kMostOff = 0.03;
+/// Faces straddle the tubes already where their centroids lie less than this deep, in local radii (a ring
+/// of 64 sides: 0.1 %); a finer step would read as a ripple to the curvature fit on fine rings.
+constexpr double kFinest = 0.002;
 /// Where two tubes overlap, each surface keeps this share of the smaller radius from the plane between them.
 constexpr double kGap = 0.02;
 /// A vertex with the tubes of one vessel only within this many local radii is that vessel's.
 constexpr double kClear = 0.25;
 
 /// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, the
-/// cone nearest to it (outside; inside, the first found that holds it) and how far outside the union it
-/// lies (0 inside).
+/// cone nearest to it (outside; inside, the first found that holds it), how far outside the union it
+/// lies (0 inside), and how far off the tubes (signed) its move leaves it (NaN where the fit leaves the
+/// vertex alone: near a cap, inside another branch's tube).
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
                    std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone,
-                   std::vector<double>& outside) {
+                   std::vector<double>& outside, std::vector<double>& left) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
@@ -39,15 +47,17 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
       outside[v] = std::max(d.distance, 0.0);
       if (d.distance < 0) {
         if (fit != Fit::onto) continue;
-        // Inside, the cone that holds the vertex deepest is the one it goes out of.
-        d = cones.deepest(p, kLeast * d.radius);
+        // Inside, the cone that holds the vertex deepest is the one it goes out of (none holds it deeper
+        // than kLeast: it stays, and may yet be lifted).
+        const ConeDistance deep = cones.deepest(p, kLeast * d.radius);
+        if (std::isfinite(deep.distance)) d = deep, radius[v] = d.radius;
         // Inside another branch's tube too, a vertex would go out through it; not so inside a joint's
         // sphere, which all its branches share (a soma's, with dendrites from its centre).
-        if (!std::isfinite(d.distance) || cones.inside_other_branch(p, d.branch)) continue;
-        radius[v] = d.radius;
+        if (cones.inside_other_branch(p, d.branch)) continue;
       }
-      if (!std::isfinite(d.distance) || std::abs(d.distance) <= kLeast * d.radius) continue;
-      if (cones.near_cap(p)) continue;  // a capped end is no part of the round tubes
+      if (!std::isfinite(d.distance) || cones.near_cap(p)) continue;  // a capped end is not round
+      left[v] = d.distance;  // inside by less than kLeast: the first cone's depth, as close as the lift needs
+      if (std::abs(d.distance) <= kLeast * d.radius) continue;
       const double reach = kKeep * d.radius;
       const double keep = reach * std::tanh(d.distance / reach);  // where the vertex is left
       Vec3 step = -(d.distance - keep) * d.direction;
@@ -60,10 +70,53 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
           (cones.nearest(p + mid * step, &hint, false).distance < 0 ? inside : outside) = mid;
         }
         step *= outside;
+        left[v] = d.distance - outside * (d.distance - keep);
+      } else {
+        left[v] = keep;
       }
       move[v] = step;
     }
   });
+}
+
+/// Each fitted vertex's lift along its normal so that its faces straddle the tubes instead of cutting
+/// inside them: flat between corners on a round tube, a face's centroid lies inside it (1.7 % of the radius
+/// on a ring of 16 sides). On a regular triangulation of a curved surface the centroids of a vertex's faces
+/// lie a third of its umbrella's depth (its 1-ring's mean, along the normal) below it, so the vertex goes
+/// out by that (in where the surface is concave), as far as it stays within kMostOff of the tubes. Judged on
+/// the surface as `move` takes it, where `left` says how far off the tubes each vertex then lies (NaN: not
+/// fitted). Not next to another vessel's tube (a crowded cone), where it would press the two surfaces into
+/// each other.
+std::vector<Vec3> straddle_lifts(const TriMesh& mesh, const RoundCones& cones, const std::vector<Vec3>& move,
+                                 const std::vector<double>& left, const std::vector<int32_t>& nearest_cone,
+                                 const std::vector<double>& radius) {
+  const std::size_t n = mesh.vertices.size();
+  std::vector<Vec3> to(n);
+  for (std::size_t v = 0; v < n; ++v) to[v] = mesh.vertices[v] + move[v];
+  std::vector<Vec3> normal(n, Vec3::Zero()), around(n, Vec3::Zero());
+  std::vector<int32_t> count(n, 0);
+  for (const Tri& t : mesh.faces) {
+    const Vec3 face = face_normal(to, t);
+    for (int k = 0; k < 3; ++k) {
+      normal[t[k]] += face;
+      around[t[k]] += to[t[(k + 1) % 3]] + to[t[(k + 2) % 3]];
+      count[t[k]] += 2;
+    }
+  }
+  std::vector<Vec3> lift(n, Vec3::Zero());
+  parallel_for(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      if (!std::isfinite(left[v]) || count[v] == 0 || normal[v].squaredNorm() == 0) continue;
+      if (nearest_cone[v] >= 0 && cones.crowded(nearest_cone[v])) continue;
+      const double most = kMostOff * radius[v];
+      if (std::abs(left[v]) >= most) continue;  // stopped further off (at a crotch)
+      const Vec3 up = normal[v].normalized();
+      const double depth = up.dot(to[v] - around[v] / count[v]) / 3;  // of its faces' centroids
+      if (std::abs(depth) < kFinest * radius[v]) continue;
+      lift[v] = std::clamp(depth, -most - left[v], most - left[v]) * up;
+    }
+  });
+  return lift;
 }
 
 /// Moves `p`, a point of the surface round the tube of sphere (ca, ra), off the tube of sphere (cb, rb)
@@ -206,9 +259,13 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   std::vector<double> radius(n, 0.0);
   std::vector<int32_t> nearest_cone(n, -1);
   std::vector<double> outside(n, 0.0);
-  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside);
+  std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
+  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left);
   stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
-
+  if (fit == Fit::onto) {
+    const std::vector<Vec3> lift = straddle_lifts(mesh, cones, move, left, nearest_cone, radius);
+    for (std::size_t v = 0; v < n; ++v) move[v] += lift[v];
+  }
   const GuardedMoves moved = move_without_folding(mesh, std::move(move), radius);
   stats.moved = moved.moved;
   stats.held_back = moved.held_back;

@@ -7,7 +7,9 @@
 // the tubes' surface the shortest way, to within a small tolerance, so that the surface has the radius
 // the file gives wherever it can. Where the file's tubes overlap side by side (a vessel traced along
 // another, two vessels closer than their radii), each surface runs through the other's tube; there the
-// two are pressed flat against each other instead, so that they no longer cross.
+// two are pressed flat against each other instead, so that they no longer cross. Last, each vertex goes
+// out a little along its normal, so that the flat faces between the vertices straddle the round tubes
+// rather than cut inside them.
 
 #include <cstdint>
 
@@ -36,14 +38,17 @@ struct FitStats {
 
 /// Moves the vertices of `mesh` that `fit` chooses towards the surface of the union of `graph`'s round
 /// cones, at their closest point on it: a vertex at signed distance d ends at τr·tanh(d/τr), within
-/// τ = 3 % of the local radius r. A ripple much smaller than τr (the Loop surface's own, about 1 % round
-/// a tube) keeps its smooth shape; larger departures come within τr. An outward move stops where its way
-/// enters another cone. A vertex of one vessel in (or within 2 % of) another's tube, away from a joint
-/// the two share, moves instead onto its own side of the radical plane of the two tubes' spheres there,
-/// 2 % of the smaller radius from it. A move that would fold a triangle over, or carry a triangle through
-/// another part of the surface, is halved, and dropped after the sixth cut: the fit adds no folds, and no
-/// crossings by the moves long enough to make one on their own (over a fifth of the local radius or half
-/// the vertex's shortest edge); shorter moves together can add a few where surfaces already cross.
+/// τ = 1 % of the local radius r; one within 0.7 % stays. An outward move stops where its way enters
+/// another cone. A vertex of one vessel in (or within 2 % of) another's tube, away from a joint the two
+/// share, moves instead onto its own side of the radical plane of the two tubes' spheres there, 2 % of the
+/// smaller radius from it. With Fit::onto each vertex fitted onto the tubes also goes out along its normal
+/// by the depth of its faces' centroids below it (a third of its umbrella's depth: 1.7 % of the radius on a
+/// ring of 16 sides), to at most 3 % off the tubes, so that the flat faces straddle the round tubes rather
+/// than cut inside them; lifts below 0.2 % are not made, nor next to another vessel's tube. A move that
+/// would fold a triangle over, or carry a triangle through another part of the surface, is halved, and
+/// dropped after the sixth cut: the fit adds no folds, and no crossings by the moves long enough to make
+/// one on their own (over a fifth of the local radius or half the vertex's shortest edge); shorter moves
+/// together can add a few where surfaces already cross.
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
 
 /// The same onto the tubes `cones` holds (built once for both the separate stage and the fit).

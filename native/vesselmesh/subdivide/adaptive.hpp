@@ -38,8 +38,8 @@ struct SubdivisionOptions {
                            ///< for its curvature to say where detail is (paper §2.5 step 1)
   CurvatureMeasure measure = CurvatureMeasure::tube_departure;  ///< ranks vessels of every size alike
   /// curvature: in [0, 1], on the scaled and equalised measure. At level 2 on octagons, 0.72 keeps 57 % of
-  /// uniform's triangles on brava-bg0003 and human-brain-arteries with face centroids 1.15× and 1.20× as far
-  /// off at the 95th percentile (test_adaptive; 0.7: 60.1 % on human-brain-arteries).
+  /// uniform's triangles on brava-bg0003 and human-brain-arteries with face centroids 0.8 % and 0.4 % of the
+  /// radius further off at the 95th percentile (test_adaptive; 0.7: 60.1 % on human-brain-arteries).
   double threshold = 0.72;
   double angle_degrees = 160;    ///< dihedral: interior angle, 180 for coplanar triangles
 };
