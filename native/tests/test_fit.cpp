@@ -310,7 +310,8 @@ TEST(GuardedMoves, NoTriangleTurnsOverAsTheFilesHoldItFarFromTheOrigin) {
     const Vec3 middle = 0.5 * (mesh.vertices[1 + k] + mesh.vertices[1 + (k + 1) % 6]);
     std::vector<Vec3> move(mesh.vertices.size(), Vec3::Zero());
     move[0] = (middle - origin) * (1 + 0.02 * unit(random)) + step * Vec3(unit(random), unit(random), 30);
-    move_without_folding(mesh, move, std::vector<double>(mesh.vertices.size(), 100 * step));
+    const std::vector<double> radius(mesh.vertices.size(), 100 * step);
+    move_without_folding(mesh, move, long_move_reach(mesh, radius));
     std::vector<Vec3> written;
     for (const Vec3& p : mesh.vertices) written.push_back(rounded_to_float(p));
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)

@@ -1,6 +1,7 @@
 #include "vesselmesh/fit/fit.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -50,10 +51,12 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
         // Inside, the cone that holds the vertex deepest is the one it goes out of (none holds it deeper
         // than kLeast: it stays, and may yet be lifted).
         const ConeDistance deep = cones.deepest(p, kLeast * d.radius);
-        if (std::isfinite(deep.distance)) d = deep, radius[v] = d.radius;
+        const bool shallow = !std::isfinite(deep.distance);
+        if (!shallow) d = deep, radius[v] = d.radius;
         // Inside another branch's tube too, a vertex would go out through it; not so inside a joint's
-        // sphere, which all its branches share (a soma's, with dendrites from its centre).
-        if (cones.inside_other_branch(p, d.branch)) continue;
+        // sphere, which all its branches share (a soma's, with dendrites from its centre). Just inside a
+        // cone that is not crowded, no other branch's tube can hold it.
+        if ((!shallow || cones.crowded(hint)) && cones.inside_other_branch(p, d.branch)) continue;
       }
       if (!std::isfinite(d.distance) || cones.near_cap(p)) continue;  // a capped end is not round
       left[v] = d.distance;  // inside by less than kLeast: the first cone's depth, as close as the lift needs
@@ -79,44 +82,51 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
   });
 }
 
-/// Each fitted vertex's lift along its normal so that its faces straddle the tubes instead of cutting
-/// inside them: flat between corners on a round tube, a face's centroid lies inside it (1.7 % of the radius
-/// on a ring of 16 sides). On a regular triangulation of a curved surface the centroids of a vertex's faces
-/// lie a third of its umbrella's depth (its 1-ring's mean, along the normal) below it, so the vertex goes
-/// out by that (in where the surface is concave), as far as it stays within kMostOff of the tubes. Judged on
-/// the surface as `move` takes it, where `left` says how far off the tubes each vertex then lies (NaN: not
-/// fitted). Not next to another vessel's tube (a crowded cone), where it would press the two surfaces into
-/// each other.
-std::vector<Vec3> straddle_lifts(const TriMesh& mesh, const RoundCones& cones, const std::vector<Vec3>& move,
-                                 const std::vector<double>& left, const std::vector<int32_t>& nearest_cone,
-                                 const std::vector<double>& radius) {
+/// Adds to each fitted vertex's move a lift along its normal so that its faces straddle the tubes instead
+/// of cutting inside them: flat between corners on a round tube, a face's centroid lies inside it (1.7 % of
+/// the radius on a ring of 16 sides). On a regular triangulation of a curved surface the centroids of a
+/// vertex's faces lie a third of its umbrella's depth (its 1-ring's mean, along the normal) below it, so the
+/// vertex goes out by that (in where the surface is concave), as far as it stays within kMostOff of the
+/// tubes. Judged on the surface as `move` takes it, where `left` says how far off the tubes each vertex then
+/// lies (NaN: not fitted). Not next to another vessel's tube (a crowded cone), where it would press the two
+/// surfaces into each other; and no further than keeps a short move short (within `reach`,
+/// long_move_reach: between short edges), which would cost the guard a search for crossings there.
+void add_straddle_lifts(const TriMesh& mesh, const RoundCones& cones, const std::vector<double>& left,
+                        const std::vector<int32_t>& nearest_cone, const std::vector<double>& radius,
+                        const std::vector<double>& reach, std::vector<Vec3>& move) {
   const std::size_t n = mesh.vertices.size();
-  std::vector<Vec3> to(n);
-  for (std::size_t v = 0; v < n; ++v) to[v] = mesh.vertices[v] + move[v];
-  std::vector<Vec3> normal(n, Vec3::Zero()), around(n, Vec3::Zero());
+  auto to = [&](int32_t v) { return Vec3(mesh.vertices[v] + move[v]); };
+  // Per vertex, its faces' normals and its 1-ring's offsets from it, each summed: short sums of short
+  // vectors, which floats hold.
+  std::vector<Eigen::Vector3f> normal(n, Eigen::Vector3f::Zero()), around(n, Eigen::Vector3f::Zero());
   std::vector<int32_t> count(n, 0);
   for (const Tri& t : mesh.faces) {
-    const Vec3 face = face_normal(to, t);
+    const std::array<Vec3, 3> c = {to(t[0]), to(t[1]), to(t[2])};
+    const Eigen::Vector3f face = (c[1] - c[0]).cross(c[2] - c[0]).cast<float>();  // area-weighted
     for (int k = 0; k < 3; ++k) {
       normal[t[k]] += face;
-      around[t[k]] += to[t[(k + 1) % 3]] + to[t[(k + 2) % 3]];
+      around[t[k]] += (c[(k + 1) % 3] + c[(k + 2) % 3] - 2 * c[k]).cast<float>();
       count[t[k]] += 2;
     }
   }
-  std::vector<Vec3> lift(n, Vec3::Zero());
   parallel_for(n, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       if (!std::isfinite(left[v]) || count[v] == 0 || normal[v].squaredNorm() == 0) continue;
       if (nearest_cone[v] >= 0 && cones.crowded(nearest_cone[v])) continue;
       const double most = kMostOff * radius[v];
       if (std::abs(left[v]) >= most) continue;  // stopped further off (at a crotch)
-      const Vec3 up = normal[v].normalized();
-      const double depth = up.dot(to[v] - around[v] / count[v]) / 3;  // of its faces' centroids
+      const Vec3 up = normal[v].normalized().cast<double>();
+      const double depth = -up.dot(around[v].cast<double>()) / (3 * count[v]);  // of its faces' centroids
       if (std::abs(depth) < kFinest * radius[v]) continue;
-      lift[v] = std::clamp(depth, -most - left[v], most - left[v]) * up;
+      double lift = std::clamp(depth, -most - left[v], most - left[v]);
+      if (move[v].norm() <= reach[v]) {  // a short move stays short: |move + lift·up| < reach
+        const double b = move[v].dot(up), most_long = 0.99 * reach[v];
+        const double room = std::sqrt(std::max(0.0, b * b + most_long * most_long - move[v].squaredNorm()));
+        lift = std::clamp(lift, -b - room, -b + room);
+      }
+      move[v] += lift * up;
     }
   });
-  return lift;
 }
 
 /// Moves `p`, a point of the surface round the tube of sphere (ca, ra), off the tube of sphere (cb, rb)
@@ -262,11 +272,9 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
   closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left);
   stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
-  if (fit == Fit::onto) {
-    const std::vector<Vec3> lift = straddle_lifts(mesh, cones, move, left, nearest_cone, radius);
-    for (std::size_t v = 0; v < n; ++v) move[v] += lift[v];
-  }
-  const GuardedMoves moved = move_without_folding(mesh, std::move(move), radius);
+  const std::vector<double> reach = long_move_reach(mesh, radius);
+  if (fit == Fit::onto) add_straddle_lifts(mesh, cones, left, nearest_cone, radius, reach, move);
+  const GuardedMoves moved = move_without_folding(mesh, std::move(move), reach);
   stats.moved = moved.moved;
   stats.held_back = moved.held_back;
   return stats;

@@ -23,7 +23,7 @@ GuardedMoves round_tubes(TriMesh& mesh) {
     }
   });
   drop_tube_axis_properties(mesh);
-  return move_without_folding(mesh, std::move(move), radius);
+  return move_without_folding(mesh, std::move(move), long_move_reach(mesh, radius));
 }
 
 std::vector<char> faces_near_joints(const TriMesh& mesh) {
