@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
@@ -16,6 +17,7 @@
 #include "vesselmesh/geometry/self_intersections.hpp"
 #include "vesselmesh/graph/union_find.hpp"
 #include "vesselmesh/mesh/mesh_edges.hpp"
+#include "vesselmesh/parallel.hpp"
 
 namespace vesselmesh {
 
@@ -178,51 +180,56 @@ TopologyReport check_topology(const TriMesh& mesh) {
   TopologyReport r;
   r.faces = static_cast<int64_t>(faces.size());
 
-  // The volume is taken about the middle of the vertices, which keeps the products small.
+  // Faces with three distinct vertices; the others count as degenerate and are left out.
+  std::vector<Tri> kept;
+  const bool all_kept = std::none_of(faces.begin(), faces.end(), repeats_vertex);
+  if (!all_kept)
+    std::copy_if(faces.begin(), faces.end(), std::back_inserter(kept),
+                 [](const Tri& f) { return !repeats_vertex(f); });
+  const std::vector<Tri>& valid = all_kept ? faces : kept;
+  r.degenerate_faces = static_cast<int64_t>(faces.size() - valid.size());
+
+  // The volume is taken about the middle of the vertices, which keeps the products small; summed in
+  // blocks of a fixed size, so that the sum does not depend on the cores.
   Box bounds;
   for (const Vec3& p : mesh.vertices) bounds.extend(p);
   const Vec3 origin = 0.5 * (bounds.lo + bounds.hi);
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t blocks = (valid.size() + kBlock - 1) / kBlock;
+  std::vector<double> volume(blocks, 0.0);
+  std::vector<int64_t> flat(blocks, 0);
+  parallel_for(blocks, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
+      for (std::size_t f = b * kBlock; f < std::min(valid.size(), (b + 1) * kBlock); ++f) {
+        const Triangle t = corners(mesh.vertices, valid[f]);
+        flat[b] += has_no_area(t);
+        volume[b] += (t[0] - origin).dot((t[1] - origin).cross(t[2] - origin)) / 6.0;
+      }
+  }, 1);
+  for (std::size_t b = 0; b < blocks; ++b) r.signed_volume += volume[b], r.degenerate_faces += flat[b];
 
-  // Faces with three distinct vertices; the others count as degenerate and are left out.
-  std::vector<Tri> valid;
-  valid.reserve(faces.size());
+  std::vector<int32_t> incident(mesh.vertices.size(), 0);  // faces round each vertex
+  for (const Tri& face : valid)
+    for (int32_t v : face) ++incident[v];
+  const MeshEdges e = mesh_edges(valid, static_cast<int32_t>(mesh.vertices.size()));
   UnionFind components(mesh.vertices.size());
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const Tri& face : faces) {
-    if (repeats_vertex(face)) {
-      ++r.degenerate_faces;
-      continue;
-    }
-    const Triangle t = corners(mesh.vertices, face);
-    if (has_no_area(t)) ++r.degenerate_faces;
-    valid.push_back(face);
-    r.signed_volume += (t[0] - origin).dot((t[1] - origin).cross(t[2] - origin)) / 6.0;
-    for (int32_t v : face) used[v] = 1;
-    components.unite(face[0], face[1]);
-    components.unite(face[1], face[2]);
+  for (const auto& [a, b] : e.edges) components.unite(a, b);  // in order of the lower vertex: near in memory
+  for (std::size_t v = 0; v < incident.size(); ++v) {
+    if (incident[v] == 0) continue;
+    ++r.vertices;
+    if (components.find(static_cast<int32_t>(v)) == static_cast<int32_t>(v)) ++r.components;
   }
 
-  // Each edge's corners (3·face + k, the corner where the face's side along the edge starts), grouped
-  // by edge.
-  const MeshEdges e = mesh_edges(valid, static_cast<int32_t>(mesh.vertices.size()));
-  std::vector<int64_t> first(e.edges.size() + 1, 0);
-  for (const Tri& c : e.corner_edges)
-    for (int32_t edge : c) ++first[edge + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<int32_t> by_edge(3 * valid.size());
-  std::vector<int64_t> fill(first.begin(), first.end() - 1);
-  for (std::size_t c = 0; c < by_edge.size(); ++c)
-    by_edge[fill[e.corner_edges[c / 3][c % 3]]++] = static_cast<int32_t>(c);
-
   // Corners at one vertex are joined when their faces share an edge there; each resulting set is one
-  // fan of faces round the vertex.
+  // fan of faces round the vertex, so a vertex has as many fans as faces less the joins that merged two.
   auto start = [&](int32_t c) { return valid[c / 3][c % 3]; };
   auto corner_at = [&](int32_t c, int32_t v) { return c - c % 3 + (start(c) == v ? c % 3 : (c % 3 + 1) % 3); };
-  UnionFind fans(by_edge.size());
+  UnionFind fans(3 * valid.size());
+  std::vector<int32_t> fan_count = std::move(incident);
   r.edges = static_cast<int64_t>(e.edges.size());
   for (std::size_t edge = 0; edge < e.edges.size(); ++edge) {
-    const int32_t* c = by_edge.data() + first[edge];
-    const int64_t count = first[edge + 1] - first[edge];
+    const int32_t* c = e.corners.data() + e.first[edge];
+    const int64_t count = e.first[edge + 1] - e.first[edge];
     if (count == 1)
       ++r.boundary_edges;
     else if (count > 2)
@@ -230,22 +237,11 @@ TopologyReport check_topology(const TriMesh& mesh) {
     else if (start(c[0]) == start(c[1]))
       ++r.inconsistent_edges;
     for (int64_t h = 1; h < count; ++h)
-      for (int32_t v : e.edges[edge]) fans.unite(corner_at(c[0], v), corner_at(c[h], v));
+      for (int32_t v : e.edges[edge]) fan_count[v] -= fans.unite(corner_at(c[0], v), corner_at(c[h], v));
   }
-  std::vector<int32_t> fan_count(mesh.vertices.size(), 0);
-  for (std::size_t f = 0; f < valid.size(); ++f)
-    for (int32_t k = 0; k < 3; ++k) {
-      const auto c = static_cast<int32_t>(3 * f + k);
-      if (fans.find(c) == c) ++fan_count[valid[f][k]];
-    }
   r.non_manifold_vertices =
       std::count_if(fan_count.begin(), fan_count.end(), [](int32_t n) { return n > 1; });
 
-  for (std::size_t v = 0; v < used.size(); ++v) {
-    if (!used[v]) continue;
-    ++r.vertices;
-    if (components.find(static_cast<int32_t>(v)) == static_cast<int32_t>(v)) ++r.components;
-  }
   r.euler_characteristic = r.vertices - r.edges + static_cast<int64_t>(valid.size());
   if (r.closed_manifold()) r.genus = (2 * r.components - r.euler_characteristic) / 2;
   return r;

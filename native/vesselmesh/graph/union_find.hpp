@@ -17,10 +17,13 @@ class UnionFind {
     return v;
   }
 
-  /// The smaller representative wins, so results do not depend on the order of the calls.
-  void unite(int32_t a, int32_t b) {
+  /// The smaller representative wins, so results do not depend on the order of the calls. Returns whether
+  /// a and b were apart.
+  bool unite(int32_t a, int32_t b) {
     a = find(a), b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    if (a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
   }
 
  private:

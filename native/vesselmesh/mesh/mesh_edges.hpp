@@ -13,6 +13,8 @@ namespace vesselmesh {
 struct MeshEdges {
   std::vector<std::array<int32_t, 2>> edges;  ///< E undirected edges (lower vertex first), sorted
   std::vector<Tri> corner_edges;              ///< per face f and corner k: the edge from corner k to k+1
+  std::vector<int32_t> corners;  ///< 3F corners (3·f + k, whose edge runs from corner k to k+1), by edge
+  std::vector<int64_t> first;    ///< E + 1: edge e's corners are corners[first[e], first[e + 1])
 };
 
 /// Every distinct vertex pair that some face joins, in O(F) time. faces: (F,3) indices below
