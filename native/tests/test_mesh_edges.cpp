@@ -20,8 +20,9 @@ using Pair = std::pair<int32_t, int32_t>;
 
 Pair undirected(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
 
-/// Every property the host relies on: each corner's edge joins that corner and the next; every listed
-/// edge is some face's, lower vertex first, sorted and listed once.
+/// Every property the host and the topology check rely on: each corner's edge joins that corner and the
+/// next; every listed edge is some face's, lower vertex first, sorted and listed once; each edge's corners
+/// are grouped under it.
 void expect_edges_of(const std::vector<Tri>& faces, int32_t vertex_count) {
   const MeshEdges e = mesh_edges(faces, vertex_count);
   ASSERT_EQ(e.corner_edges.size(), faces.size());
@@ -37,6 +38,21 @@ void expect_edges_of(const std::vector<Tri>& faces, int32_t vertex_count) {
   std::vector<Pair> listed;
   for (const auto& edge : e.edges) listed.emplace_back(edge[0], edge[1]);
   EXPECT_EQ(listed, std::vector<Pair>(joined.begin(), joined.end()));  // sorted, distinct, nothing extra
+  // Each edge's grouped corners are exactly the corners whose edge it is, every corner once.
+  ASSERT_EQ(e.first.size(), e.edges.size() + 1);
+  ASSERT_EQ(e.corners.size(), 3 * faces.size());
+  EXPECT_EQ(e.first.front(), 0);
+  EXPECT_EQ(e.first.back(), static_cast<int64_t>(3 * faces.size()));
+  std::vector<int32_t> seen(3 * faces.size(), 0);
+  for (std::size_t edge = 0; edge < e.edges.size(); ++edge) {
+    ASSERT_LT(e.first[edge], e.first[edge + 1]);
+    for (int64_t i = e.first[edge]; i < e.first[edge + 1]; ++i) {
+      const int32_t c = e.corners[i];
+      EXPECT_EQ(e.corner_edges[c / 3][c % 3], static_cast<int32_t>(edge));
+      ++seen[c];
+    }
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int32_t n) { return n == 1; }));
 }
 
 TEST(MeshEdges, ATorusHasThreeEdgesPerTwoFacesEachJoiningItsCorners) {
