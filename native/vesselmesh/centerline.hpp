@@ -23,8 +23,9 @@ struct CenterlineData {
 
 /// Limits on what can be meshed, so that every later stage's arithmetic stays finite and its work stays
 /// bounded by the surface it makes rather than by numbers in the file.
-/// Coordinates and radii at most this large in magnitude: their squares and products stay finite.
-constexpr double kMaxCoordinate = 1e150;
+/// Coordinates and radii at most this large in magnitude: the surface, within a few radii of its points,
+/// stays within what the files' floats hold (3.4e38), and squares and products stay finite.
+constexpr double kMaxCoordinate = 1e30;
 /// Radii at least this fraction of the data set's size (the largest of its extent, its distance from the
 /// origin and its largest radius): a tube thinner than that is lost in the rounding of its own coordinates.
 constexpr double kMinRadiusOfSize = 1e-12;
