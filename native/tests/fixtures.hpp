@@ -259,6 +259,31 @@ inline CenterlineData hairpin_over_short_edges(double scale) {
   return d;
 }
 
+/// A thick vessel and a thinner one that leaves its first point backwards, turns back within two of its
+/// radii and runs on beside it, their tubes overlapping, drawn as one polyline (brava-records BH0038's
+/// root: its two vessels start from one duplicated point): from the thick vessel's far end (radius
+/// 2.16, 20 points 0.6 to 1.3 radii apart, itself turning back near the start), through the shared point,
+/// down the thin one (1.6) and up beside the thick one. The tube that got round the thin one's bend kept
+/// no section within 5.5 radii of it, and cut straight across, a prism inside the vessels beside it.
+inline CenterlineData hairpin_beside_the_vessel_it_leaves(double scale) {
+  CenterlineData d = start(scale * Vec3(6.21, -13.00, 19.84), 2.159 * scale);
+  const std::vector<std::pair<Vec3, double>> path = {
+      {{4.61, -13.00, 18.60}, 2.159}, {{2.21, -12.70, 17.36}, 2.159}, {{-0.31, -11.20, 16.12}, 2.159},
+      {{-0.62, -11.20, 14.88}, 2.159}, {{-1.24, -8.70, 13.64}, 2.159}, {{-1.55, -8.70, 12.40}, 2.159},
+      {{-1.55, -6.80, 11.16}, 2.159}, {{-2.48, -3.70, 9.92}, 2.159}, {{-2.17, -1.20, 11.16}, 2.159},
+      {{-2.79, 0.60, 12.40}, 2.159}, {{-3.10, 3.10, 11.16}, 2.159}, {{-3.72, 5.60, 9.92}, 2.159},
+      {{-4.03, 5.00, 8.68}, 2.159}, {{-4.03, 4.30, 7.44}, 2.159}, {{-3.41, 3.70, 6.20}, 2.159},
+      {{-2.48, 1.90, 4.96}, 2.159}, {{-1.24, 0.60, 3.72}, 2.159}, {{-0.31, -0.60, 2.48}, 2.159},
+      {{0.31, 0.00, 1.24}, 2.159}, {{0.00, 0.00, 0.00}, 2.159}, {{0.62, -0.60, -1.24}, 1.595},
+      {{1.51, -0.60, -2.48}, 1.595}, {{1.91, 0.60, -3.72}, 1.595}, {{-1.55, 2.80, -2.48}, 1.595},
+      {{-2.48, 4.30, -1.24}, 1.595}, {{-4.03, 5.00, 0.00}, 1.595}, {{-4.65, 5.00, 1.24}, 1.595},
+      {{-4.96, 5.60, 2.48}, 1.595}, {{-4.96, 6.80, 3.72}, 1.595}, {{-3.41, 8.70, 4.96}, 1.595},
+      {{-2.17, 9.00, 6.20}, 1.595}, {{-1.24, 9.30, 7.44}, 1.637}, {{0.00, 9.30, 6.82}, 1.637}};
+  int32_t last = 0;
+  for (const auto& [p, r] : path) last = run(d, last, scale * p, 1, r * scale);
+  return d;
+}
+
 /// A trunk of radius 1 along +z with six side branches two radii apart, all on one side, each leaving at
 /// 45° towards the next joint: 1.5 out to radius 0.4, then 6 more to 0.32. As in a neuron's SWC
 /// tracing, each side branch starts at its fork with the trunk's radius, so its first edge is a fat
@@ -459,27 +484,27 @@ inline CenterlineData crowded_joints(double scale) {
   return d;
 }
 
-/// A random tree (native/python/tests/test_random_trees.py, seed 1, the 78th) of 29 points whose surface
-/// crossed itself at levels 1 and 2 with small squares on every patch (its joints crowd within a radius or
-/// two of each other); built again with full squares round the crossing, it does not.
+/// A random tree (native/python/tests/test_random_trees.py, seed 1, the 308th) of 27 points whose surface
+/// crosses itself at levels 1 and 2 with small squares on every patch (its joints crowd within a radius or
+/// two of each other); built again with full squares round the crossing, it does not. (The 78th, the
+/// fixture before, no longer crosses so since a tube that cuts across a bend is cut there as a corner.)
 inline CenterlineData crossing_with_small_squares(double scale) {
-  CenterlineData d = start(Vec3::Zero(), 0.751398 * scale);
+  CenterlineData d = start(Vec3::Zero(), 0.913856 * scale);
   const std::vector<std::tuple<Vec3, double, int32_t>> points = {
       // position, radius, parent
-      {{-0.0269147, 0.00069899, 0.045967}, 0.881966, 0},  {{1.77934, 0.474352, 1.36242}, 0.912596, 1},
-      {{-0.411056, 1.14607, -0.0703968}, 0.668823, 0},  {{-0.0269876, 0.0465541, 0.259469}, 0.549584, 1},
-      {{5.14188, -0.281672, 2.33442}, 0.753953, 2},  {{-0.302688, -0.157327, 0.845474}, 0.884483, 1},
-      {{-0.785515, -0.333728, 1.72865}, 1.0035, 6},  {{-0.857438, -0.31162, 2.0119}, 0.690086, 7},
-      {{-0.991113, -1.67537, 0.930556}, 0.484532, 0},  {{-1.10723, -1.84353, 1.03075}, 0.331829, 9},
-      {{-0.323351, -0.172789, 0.907617}, 0.713068, 6},  {{-1.62903, -0.53679, 0.28116}, 0.663197, 11},
-      {{-1.68057, 0.098831, 0.193838}, 0.578373, 12},  {{-1.44249, 0.223026, 0.326185}, 0.557183, 13},
-      {{-1.31653, 0.0789145, 0.907875}, 0.360989, 14},  {{-0.336349, -0.0533456, 5.00527}, 0.330022, 15},
-      {{5.20884, -0.297347, 2.34565}, 0.621718, 5},  {{-0.835581, 1.97818, -0.0224189}, 0.672346, 3},
-      {{-1.26055, -2.05294, 1.14186}, 0.262188, 10},  {{-2.77458, -1.82331, 0.228239}, 0.310174, 19},
-      {{-3.03719, -1.25645, -0.212809}, 0.328258, 20},  {{-2.99336, 0.595636, -1.37433}, 0.316092, 21},
-      {{-1.37092, -2.39934, 0.962082}, 0.846966, 6},  {{-1.40671, -2.41129, 0.962324}, 0.665133, 23},
-      {{7.728, -1.92049, 3.10407}, 0.570359, 17},  {{-2.608, -1.0262, -0.150525}, 0.717408, 12},
-      {{-2.63901, -1.04051, -0.163291}, 0.826736, 26},  {{-5.63722, -2.42976, -1.10358}, 0.568159, 27},
+      {{1.511, 1.51861, -2.93661}, 1.03747, 0}, {{1.19871, 1.48942, -3.0135}, 0.822847, 1},
+      {{-3.05892, 1.14857, -3.5951}, 0.91704, 2}, {{-3.31346, 0.921957, -3.332}, 0.809153, 3},
+      {{-3.93298, 0.250984, -2.46569}, 0.967803, 4}, {{-3.96171, 0.202468, -2.4313}, 0.628044, 5},
+      {{-3.98337, 0.183896, -2.36468}, 0.59466, 6}, {{-2.01555, 1.07964, -1.38248}, 0.571708, 7},
+      {{-1.9853, 1.10984, -1.33285}, 0.488793, 8}, {{0.961561, 1.88998, 0.230429}, 0.516712, 8},
+      {{-4.07914, 0.162193, -2.30299}, 0.781233, 5}, {{-4.40988, 0.155029, -2.24591}, 0.549163, 11},
+      {{-4.44005, 0.15347, -2.24486}, 0.447284, 12}, {{1.62235, 1.809, 1.16115}, 0.339682, 10},
+      {{1.84284, 1.79437, 1.48616}, 0.396461, 14}, {{2.20045, 1.63854, 3.35866}, 0.239798, 15},
+      {{2.78071, 0.966176, 5.8448}, 0.247162, 16}, {{-3.0837, 1.09888, -3.58299}, 0.909848, 3},
+      {{-2.90004, 1.36248, -3.4113}, 0.880627, 18}, {{-1.84352, 2.9722, -2.25152}, 0.714772, 19},
+      {{-1.83191, 1.25542, -1.05398}, 0.34259, 9}, {{-1.77383, 1.25584, -1.05737}, 0.211105, 21},
+      {{-1.27046, 0.117846, 1.71394}, 0.247642, 22}, {{-2.99132, -1.16987, 1.8504}, 0.226273, 23},
+      {{-3.18004, -1.28015, 1.89144}, 0.143279, 24}, {{1.62559, 0.719901, 0.545317}, 0.826752, 2},
   };
   for (const auto& [p, r, parent] : points) {
     d.points.push_back(scale * p);
@@ -560,6 +585,7 @@ inline std::vector<Named> joint_kinds() {
       {"siblings_side_by_side", siblings_side_by_side, 0},
       {"u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.5, s); }, 0},
       {"tight_u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.28, s); }, 0},
+      {"hairpin_beside_the_vessel_it_leaves", hairpin_beside_the_vessel_it_leaves, 0},
   };
 }
 

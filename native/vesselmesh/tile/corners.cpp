@@ -16,12 +16,40 @@ namespace {
 constexpr double kCornerJointDegrees = 120;
 const double kCornerJointCosine = std::cos(kCornerJointDegrees * M_PI / 180);
 
+/// Where the longest chain of a piece's sections that do not fold (fold_free_chains, `from`) drops
+/// sections whose centres stand more than this many of their radii off the straight line between the
+/// two it keeps either side, its tube would cut across the bend there, a straight prism inside the
+/// vessels beside it (fixture hairpin_beside_the_vessel_it_leaves: 1.1 radii, 4.9 % of the area over
+/// half a radius off the tubes); the bend is tiled as a corner instead. At half a radius, a bend of
+/// brava-records BG10 (0.50) became a corner with a notch on its outer side where the tube had been
+/// smooth, and one more of the cohort's trees had over 0.2 % of its area that far off (docs/pipeline.md).
+constexpr double kCutBend = 0.75;
+
+/// The index of the section after the dropped ones that stand furthest off the chain's chord, in radii,
+/// and that distance (0 and 0 when no section is dropped).
+std::pair<std::size_t, double> furthest_dropped(const std::vector<Section>& sections,
+                                                const std::vector<std::size_t>& from) {
+  std::pair<std::size_t, double> out{0, 0.0};
+  for (std::size_t i = sections.size() - 1; i > 0; i = from[i]) {
+    const Vec3 a = sections[from[i]].center, chord = sections[i].center - a;
+    for (std::size_t j = from[i] + 1; j < i; ++j) {
+      const Vec3 p = sections[j].center - a;
+      const double f =
+          chord.squaredNorm() > 0 ? std::clamp(p.dot(chord) / chord.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double off = (p - f * chord).norm() / sections[j].radius;
+      if (off > out.second) out = {i, off};
+    }
+  }
+  return out;
+}
+
 /// A point of `piece` to tile as a corner because the piece bends tighter than its squares' corners
 /// reach: no chain of its sections (facing along the smoothed tangent) gets round the bend without one
 /// reaching across the next one's plane, and a tube would fold there however its sections were
 /// dropped (a U-bend of a thick vessel, its legs less than three radii apart: fixture
-/// u_bend_into_a_joint). The point turning most within two radii either side, near where the chains
-/// break off; −1 when they get through, or no point of the piece is there.
+/// u_bend_into_a_joint); or the chain that gets round drops sections that stand more than kCutBend
+/// off it. The point turning most within two radii either side, near where the chains break off or
+/// the sections are dropped; −1 when they get through, or no point of the piece is there.
 int32_t tight_bend(const CenterlineGraph& g, const Branch& piece, const SamplingOptions& sampling,
                    double scale) {
   const std::size_t k = piece.points.size() - 1;
@@ -36,10 +64,14 @@ int32_t tight_bend(const CenterlineGraph& g, const Branch& piece, const Sampling
   }
   std::vector<std::size_t> from;
   const std::vector<int> count = fold_free_chains(sections, scale, from);
-  const std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin();
-  if (broken == count.size()) return -1;
+  std::size_t broken = std::find(count.begin(), count.end(), 0) - count.begin(), before = broken - 1;
+  if (broken == count.size()) {
+    const auto [after, off] = furthest_dropped(sections, from);
+    if (off <= kCutBend) return -1;
+    broken = after, before = from[after];
+  }
   const double r = sections[broken].radius;
-  const double lo = arcs[broken - 1] - 2 * scale * r, hi = arcs[broken] + 2 * r;
+  const double lo = arcs[before] - 2 * scale * r, hi = arcs[broken] + 2 * r;
   auto at = [&](double s) { return c.position(std::clamp(s, 0.0, c.length())); };
   int32_t sharpest = -1;
   double lowest = 1;  // cosine of the turn

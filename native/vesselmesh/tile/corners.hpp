@@ -1,7 +1,8 @@
 #pragma once
 // Where a branch bends too sharply for a tube (a turn over 120° at one point or within two radii of
-// one, or a bend tighter than its squares' corners reach), the base mesh cuts it and tiles the point as
-// a joint of its two pieces.
+// one, a bend tighter than its squares' corners reach, or one the tube gets round only by dropping
+// sections that stand over half a radius off it), the base mesh cuts it and tiles the point as a joint
+// of its two pieces.
 
 #include <vector>
 
