@@ -1,6 +1,7 @@
 // The separate stage: vessels whose tubes cross away from any joint are moved apart, and nothing else.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
 #include "fixtures.hpp"
@@ -214,5 +215,12 @@ TEST(Separate, TerminalBranchesHiddenInsideOtherTubesAreDroppedRoundByRound) {
     EXPECT_EQ(h.graph.branches.size(), 3u) << scale;
     // Nothing is hidden in the rest.
     EXPECT_EQ(drop_hidden_terminals(h.graph, RoundCones(h.graph)).dropped, 0) << scale;
+    // The pipeline's form drops the same and keeps the tubes of what is left, one cone per edge.
+    std::optional<RoundCones> cones;
+    cones.emplace(g);
+    CenterlineGraph kept;
+    EXPECT_EQ(drop_hidden_terminals(g, cones, kept), 4) << scale;
+    EXPECT_EQ(kept.points, h.graph.points) << scale;
+    EXPECT_EQ(cones->size(), kept.edges.size()) << scale;
   }
 }

@@ -228,12 +228,12 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   // the separate stage left terminal branches out or moved the centerline.
   std::optional<RoundCones> cones;
   const CenterlineGraph* centerline = &graph;
-  HiddenTerminals hidden;
+  CenterlineGraph unhidden;  // without its hidden terminal branches
   Separation separation;
   if (options.crossings == Crossings::separate) {
-    hidden = drop_hidden_terminals(graph, cones.emplace(graph));
-    result.hidden_terminals = hidden.dropped;
-    if (hidden.dropped > 0) centerline = &hidden.graph, cones.emplace(hidden.graph);
+    cones.emplace(graph);
+    result.hidden_terminals = drop_hidden_terminals(graph, cones, unhidden);
+    if (result.hidden_terminals > 0) centerline = &unhidden;
     separation = separate_crossings(*centerline, *cones);
     result.crossings = separation.crossings;
     result.separated_points = separation.moved_points;
@@ -300,8 +300,8 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   }
   if (separation.moved_points > 0)
     result.separated = std::move(separation.graph);
-  else if (hidden.dropped > 0)
-    result.separated = std::move(hidden.graph);
+  else if (result.hidden_terminals > 0)
+    result.separated = std::move(unhidden);
   return result;
 }
 

@@ -5,6 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include "vesselmesh/parallel.hpp"
+
 namespace vesselmesh {
 
 namespace {
@@ -14,6 +16,8 @@ constexpr double kStep = 0.25;
 /// A branch needing more spheres than this is kept without looking (a thin thread along a fat vessel for
 /// thousands of its radii is no twig).
 constexpr std::size_t kMaxSpheres = 4096;
+/// Branches per task where they are looked at on every core at once: each costs a search per sphere.
+constexpr std::size_t kBranchesPerTask = 64;
 
 /// Per sphere of branch b's family, kStep radii apart along it (each edge's ends included), the cones of
 /// other branches that hold it whole, sorted; nullopt when one has none. The piece of tube between two
@@ -70,15 +74,20 @@ std::vector<char> hidden_branches(const CenterlineGraph& g, const RoundCones& co
   std::vector<char> ring_at(g.points.size(), 0);
   for (const Branch& branch : g.branches)
     if (branch.points.front() == branch.points.back()) ring_at[branch.points.front()] = 1;
-  for (std::size_t b = 0; b < g.branches.size(); ++b) {
-    const Branch& branch = g.branches[b];
-    const int32_t first = branch.points.front(), last = branch.points.back();
-    if (first == last || (g.degree(first) == 1) == (g.degree(last) == 1)) continue;  // not from a joint
-    const int32_t joint = g.degree(first) == 1 ? last : first;
-    if (g.degree(joint) == 3 && ring_at[joint]) continue;
-    held[b] = holders(g, cones, static_cast<int32_t>(b));
-    hidden[b] = held[b] && covered(*held[b], [](int32_t) { return true; });
-  }
+  parallel_for(
+      g.branches.size(),
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+          const Branch& branch = g.branches[b];
+          const int32_t first = branch.points.front(), last = branch.points.back();
+          if (first == last || (g.degree(first) == 1) == (g.degree(last) == 1)) continue;  // not from a joint
+          const int32_t joint = g.degree(first) == 1 ? last : first;
+          if (g.degree(joint) == 3 && ring_at[joint]) continue;
+          held[b] = holders(g, cones, static_cast<int32_t>(b));
+          hidden[b] = held[b] && covered(*held[b], [](int32_t) { return true; });
+        }
+      },
+      kBranchesPerTask);
   std::vector<char> drop(g.branches.size(), 0);
   for (std::size_t b = 0; b < g.branches.size(); ++b)
     drop[b] = hidden[b] && covered(*held[b], [&](int32_t cone) { return !hidden[cones.cone(cone).branch]; });
@@ -94,19 +103,37 @@ CenterlineGraph without(const CenterlineGraph& g, const std::vector<char>& drop)
   return build_graph(centerline_data(g, keep));
 }
 
+/// Rounds of hidden_branches until none is left, the first on `first`, g's cones; `cones_of(kept)` builds
+/// those of each graph left. Returns how many branches went.
+template <class ConesOf>
+int64_t drop_in_rounds(const CenterlineGraph& g, const RoundCones& first, CenterlineGraph& kept,
+                       ConesOf&& cones_of) {
+  int64_t dropped = 0;
+  const CenterlineGraph* current = &g;
+  for (std::vector<char> drop = hidden_branches(g, first);
+       std::find(drop.begin(), drop.end(), 1) != drop.end(); drop = hidden_branches(kept, cones_of(kept))) {
+    dropped += std::count(drop.begin(), drop.end(), 1);
+    kept = without(*current, drop);
+    current = &kept;
+  }
+  return dropped;
+}
+
 }  // namespace
 
 HiddenTerminals drop_hidden_terminals(const CenterlineGraph& g, const RoundCones& cones) {
   HiddenTerminals out;
-  const CenterlineGraph* current = &g;
-  for (std::vector<char> drop = hidden_branches(g, cones); std::find(drop.begin(), drop.end(), 1) != drop.end();
-       drop = hidden_branches(out.graph, RoundCones(out.graph))) {
-    out.dropped += std::count(drop.begin(), drop.end(), 1);
-    CenterlineGraph next = without(*current, drop);
-    out.graph = std::move(next);
-    current = &out.graph;
-  }
+  std::optional<RoundCones> next;
+  out.dropped = drop_in_rounds(g, cones, out.graph, [&](const CenterlineGraph& kept) -> const RoundCones& {
+    return next.emplace(kept);
+  });
   return out;
+}
+
+int64_t drop_hidden_terminals(const CenterlineGraph& g, std::optional<RoundCones>& cones,
+                              CenterlineGraph& kept) {
+  return drop_in_rounds(g, *cones, kept,
+                        [&](const CenterlineGraph& k) -> const RoundCones& { return cones.emplace(k); });
 }
 
 }  // namespace vesselmesh

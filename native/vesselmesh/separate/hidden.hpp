@@ -6,6 +6,7 @@
 // union of the tubes, the vessel the file describes, as it is.
 
 #include <cstdint>
+#include <optional>
 
 #include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -25,5 +26,11 @@ struct HiddenTerminals {
 /// is looked at again, in rounds until none is left. The other branches, the components, the loops and the
 /// roots that remain stay.
 HiddenTerminals drop_hidden_terminals(const CenterlineGraph& g, const RoundCones& cones);
+
+/// The same for the pipeline, which keeps the tubes it looked at last: `cones` holds g's round cones; where
+/// branches are dropped, `kept` receives g without them and `cones` those of `kept` (built for the last
+/// round), which refer to it. Returns how many were dropped (`kept` untouched when none).
+int64_t drop_hidden_terminals(const CenterlineGraph& g, std::optional<RoundCones>& cones,
+                              CenterlineGraph& kept);
 
 }  // namespace vesselmesh
