@@ -284,6 +284,23 @@ inline CenterlineData hairpin_beside_the_vessel_it_leaves(double scale) {
   return d;
 }
 
+/// A thin terminal branch that curls back to its joint, as brava-records BH0038 has one: a trunk (radius
+/// 0.49) into a joint with a short twig (0.41) and a branch (0.40) 34 radii long that loops round and ends
+/// within two diameters of the joint, one point every 3 to 6 radii.
+inline CenterlineData terminal_curling_back_to_its_joint(double scale) {
+  CenterlineData d = start(scale * Vec3(3.10, 4.96, 1.24), 0.4902 * scale);
+  const int32_t joint =
+      run(d, run(d, 0, scale * Vec3(0.62, 2.48, 0.62), 1, 0.4902 * scale), Vec3::Zero(), 1, 0.4133 * scale);
+  const int32_t twig = run(d, joint, scale * Vec3(0.31, -1.86, -0.62), 1, 0.4133 * scale);
+  run(d, twig, scale * Vec3(-1.24, -1.86, -1.24), 1, 0.4133 * scale);
+  int32_t last = joint;
+  for (const Vec3& p :
+       {Vec3(0.93, -2.48, 1.24), Vec3(1.86, -3.72, 2.48), Vec3(1.86, -4.34, 3.72), Vec3(0.93, -4.65, 4.34),
+        Vec3(0.00, -4.34, 3.10), Vec3(-0.62, -1.86, 1.86), Vec3(-0.93, -0.31, 1.24)})
+    last = run(d, last, scale * p, 1, 0.3968 * scale);
+  return d;
+}
+
 /// A trunk of radius 1 along +z with six side branches two radii apart, all on one side, each leaving at
 /// 45° towards the next joint: 1.5 out to radius 0.4, then 6 more to 0.32. As in a neuron's SWC
 /// tracing, each side branch starts at its fork with the trunk's radius, so its first edge is a fat
@@ -586,6 +603,7 @@ inline std::vector<Named> joint_kinds() {
       {"u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.5, s); }, 0},
       {"tight_u_bend_into_a_joint", [](double s) { return u_bend_into_a_joint(1.28, s); }, 0},
       {"hairpin_beside_the_vessel_it_leaves", hairpin_beside_the_vessel_it_leaves, 0},
+      {"terminal_curling_back_to_its_joint", terminal_curling_back_to_its_joint, 0},
   };
 }
 

@@ -19,10 +19,11 @@ namespace vesselmesh::tile_detail {
 
 using Quad = std::array<int32_t, 4>;
 
-Tiler::Tiler(const CenterlineGraph& g, const TileOptions& o) : g_(g), opt_(o), joints_(g.points.size()) {
+Tiler::Tiler(const CenterlineGraph& g, const TileOptions& o, const std::vector<int32_t>& corners)
+    : g_(g), opt_(o), joints_(g.points.size()) {
   SamplingOptions sampling = o.sampling;  // the corners are found by sampling each branch as a whole
   sampling.max_sections = o.max_sections;
-  CutBranches cut = cut_at_corners(g, sampling, o.radius_scale);
+  CutBranches cut = cut_at_corners(g, sampling, o.radius_scale, corners);
   branches_ = std::move(cut.branches);
   corner_ = std::move(cut.corner);
   for (const Branch& b : branches_) curves_.push_back(branch_curve(g, b));
@@ -47,6 +48,7 @@ BaseMesh Tiler::run() {
   // body, and push a square that cleared the given-up mouths to the far end of its branch.
   for (bool closed = false; !closed;) {
     find_patches();
+    if (!curled_.empty()) return {};
     mesh_.vertices.clear();
     mesh_.axes.clear();
     mesh_.squares.clear();
@@ -205,10 +207,28 @@ bool Tiler::has_room(int32_t b) const {
   return used <= curves_[b].length();
 }
 
-/// Branch b is no tube (or shared square) at its joints: a stub when it ends at a terminal, else a
-/// shared square, a tunnel, or swallowed by its joints' merged patch.
+/// The point of terminal branch b furthest from its joint where b curls back (curled()), or −1: it is
+/// longer than kCurlDiameters and its squares left it room, but it has none for a tube after its square.
+int32_t Tiler::curl_apex(int32_t b) const {
+  const BranchCurve& c = curves_[b];
+  const std::vector<int32_t>& points = branches_[b].points;
+  if (!has_room(b) || room_for_tube(b) ||
+      c.length() <= kCurlDiameters * 2 * (c.radius.front() + c.radius.back()))
+    return -1;
+  const Vec3& joint = g_.points[head_[b] >= 0 ? points.front() : points.back()];
+  int32_t apex = -1;
+  double furthest = 0;
+  for (std::size_t i = 1; i + 1 < points.size(); ++i)
+    if (const double d = (g_.points[points[i]] - joint).norm(); d > furthest) furthest = d, apex = points[i];
+  return apex;
+}
+
+/// Branch b is no tube (or shared square) at its joints: a stub when it ends at a terminal (or, where it
+/// curls back, a point to tile as a corner: curled()), else a shared square, a tunnel, or swallowed by its
+/// joints' merged patch.
 void Tiler::give_up_tube(int32_t b) {
   if (head_[b] < 0 || tail_[b] < 0) {
+    if (const int32_t apex = curl_apex(b); apex >= 0) curled_.push_back(apex);
     kind_[b] = Kind::stub;
     ++mesh_.absorbed_branches;
   } else if (joints_.find(first_point(b)) == joints_.find(last_point(b))) {
@@ -262,7 +282,15 @@ void Tiler::drop_unused_vertices() {
 namespace vesselmesh {
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options) {
-  return tile_detail::Tiler(graph, options).run();
+  // Tiled again with the apexes of the terminal branches that curl back as corners, until none does: each
+  // round cuts branches at new points, so the rounds end.
+  std::vector<int32_t> corners;
+  for (;;) {
+    tile_detail::Tiler tiler(graph, options, corners);
+    BaseMesh mesh = tiler.run();
+    if (tiler.curled().empty()) return mesh;
+    corners.insert(corners.end(), tiler.curled().begin(), tiler.curled().end());
+  }
 }
 
 }  // namespace vesselmesh

@@ -162,10 +162,12 @@ std::vector<Branch> cut_branch(const CenterlineGraph& g, const Branch& b, const 
 /// tube swept round such a corner folds on its inner side (within a few radii its two legs overlap, and
 /// the smoothed tangent, spanning the legs, leaves the sections near the corner leaning along them).
 /// Closed rings of degree-2 points are left whole.
-CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale) {
+CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale,
+                           const std::vector<int32_t>& also) {
   CutBranches out;
   std::vector<char>& corner = out.corner;
   corner.assign(g.points.size(), 0);
+  for (int32_t v : also) corner[v] = 1;
   std::vector<std::vector<Branch>> pieces(g.branches.size());
   parallel_for(
       g.branches.size(),

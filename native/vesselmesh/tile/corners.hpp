@@ -19,9 +19,10 @@ struct CutBranches {
   std::vector<char> corner;      ///< per point: a corner, tiled as a joint of two branches
 };
 
-/// The graph's branches cut at their sharp corners; closed rings of degree-2 points are left whole. The
-/// branches are cut on every core at once (each marks only its own inner points).
-/// Sections are sampled as `sampling` says, their corners at `scale` × radius.
-CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale);
+/// The graph's branches cut at their sharp corners, and at the points in `also` (degree 2); closed rings of
+/// degree-2 points are left whole. The branches are cut on every core at once (each marks only its own
+/// inner points). Sections are sampled as `sampling` says, their corners at `scale` × radius.
+CutBranches cut_at_corners(const CenterlineGraph& g, const SamplingOptions& sampling, double scale,
+                           const std::vector<int32_t>& also = {});
 
 }  // namespace vesselmesh

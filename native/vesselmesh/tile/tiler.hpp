@@ -129,11 +129,22 @@ struct Patch {
   std::vector<int32_t> inside;  ///< its stubs and swallowed branches
 };
 
+/// A terminal branch longer than this many diameters (of its two ends) that has no room for a tube after
+/// its joint's square curls back on itself (Tiler::curled).
+constexpr double kCurlDiameters = 4;
+
 /// Tiles one graph: run() builds its base mesh (tile_base_mesh).
 class Tiler {
  public:
-  Tiler(const CenterlineGraph& g, const TileOptions& o);
+  /// `corners`: points to tile as corners besides the sharp ones (cut_at_corners).
+  Tiler(const CenterlineGraph& g, const TileOptions& o, const std::vector<int32_t>& corners = {});
   BaseMesh run();
+  /// Points to tile as corners, found by run(), which then stops short: a long terminal branch with no room
+  /// for a tube after its joint's square (room_for_tube) curls back to the joint; made a stub, its terminal
+  /// square a face of the patch's hull, it was a spike where a vessel 34 radii long had been (fixture
+  /// terminal_curling_back_to_its_joint, from brava-records BH0038). Cut at its point furthest from the
+  /// joint, each half has room.
+  const std::vector<int32_t>& curled() const { return curled_; }
 
  private:
   const CenterlineGraph& g_;
@@ -154,6 +165,7 @@ class Tiler {
   std::vector<Patch> patches_;
   BaseMesh mesh_;
   std::vector<int32_t> patch_of_end_;  // per end: its patch, an index into patches_
+  std::vector<int32_t> curled_;        // see curled()
 
   bool is_joint(int32_t v) const { return g_.degree(v) >= 3 || corner_[v]; }
   int32_t first_point(int32_t b) const { return branches_[b].points.front(); }
@@ -165,6 +177,7 @@ class Tiler {
   // base_mesh.cpp: each branch's kind, and the vertices no face uses dropped at the end.
   bool tube_folds(int32_t b, bool thorough) const;
   bool room_for_tube(int32_t b) const;
+  int32_t curl_apex(int32_t b) const;
   void find_patches();
   bool decide_kinds(bool thorough);
   bool has_room(int32_t b) const;
