@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 
 #include "fixtures.hpp"
 #include "test_support.hpp"
@@ -64,6 +65,18 @@ void expect_on_its_tubes(const MeshResult& r, const CenterlineGraph& g, const st
   EXPECT_LE(f.largest_centroid_offset, 1.0) << what << ", at " << f.largest_centroid_offset_at.transpose();
   EXPECT_LE(f.area_off_tubes, area) << what;
   EXPECT_LE(f.longest_edge_off_tubes, edge) << what << ", at " << f.longest_edge_off_tubes_at.transpose();
+}
+
+/// expect_on_its_tubes on the surfaces of fixture `make` at three scales, levels 0 to `top`.
+void expect_on_its_tubes_at_every_scale(const std::function<CenterlineData(double)>& make, int top,
+                                        double area, double edge, const std::string& what = "") {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(make(scale));
+    for (int levels = 0; levels <= top; ++levels)
+      expect_on_its_tubes(mesh_at(g, levels), g,
+                          what + "scale " + std::to_string(scale) + " level " + std::to_string(levels), area,
+                          edge);
+  }
 }
 
 /// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
@@ -170,14 +183,9 @@ TEST(Pipeline, SomaWithDendritesFiveDegreesApartFollowsItsTubes) {
 // tighter than the square corners reach (a corner joint), 1.5 is not (sections skip the bottom of the U).
 TEST(Pipeline, UBendBeforeAJointKeepsItsTubeRoundTheBend) {
   for (double bend : {1.28, 1.5})
-    for (double scale : {1e-3, 1.0, 1e3}) {
-      const CenterlineGraph g = build_graph(fixtures::u_bend_into_a_joint(bend, scale));
-      for (int levels = 0; levels <= 3; ++levels)
-        expect_on_its_tubes(mesh_at(g, levels), g,
-                            "bend " + std::to_string(bend) + " scale " + std::to_string(scale) + " level " +
-                                std::to_string(levels),
-                            0.04, 3.5);
-    }
+    expect_on_its_tubes_at_every_scale(
+        [&](double scale) { return fixtures::u_bend_into_a_joint(bend, scale); }, 3, 0.04, 3.5,
+        "bend " + std::to_string(bend) + " ");
 }
 
 // Not met before a tube that gets round a bend only by dropping sections that stand over half a radius off
@@ -187,12 +195,7 @@ TEST(Pipeline, UBendBeforeAJointKeepsItsTubeRoundTheBend) {
 // prism showed in any render of brava-records BH0038). Now 0.7 to 2.2 %, edges up to 3.1 radii: what lies off
 // is the corner patch's hull inside the bend of two overlapping legs, at level 0 over its coarse faces.
 TEST(Pipeline, HairpinBesideTheVesselItLeavesKeepsItsTubeRoundTheBend) {
-  for (double scale : {1e-3, 1.0, 1e3}) {
-    const CenterlineGraph g = build_graph(fixtures::hairpin_beside_the_vessel_it_leaves(scale));
-    for (int levels = 0; levels <= 3; ++levels)
-      expect_on_its_tubes(mesh_at(g, levels), g,
-                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.025, 3.2);
-  }
+  expect_on_its_tubes_at_every_scale(fixtures::hairpin_beside_the_vessel_it_leaves, 3, 0.025, 3.2);
 }
 
 // Not met before a long terminal branch with no room for a tube after its joint's square was cut at its
@@ -218,12 +221,7 @@ TEST(Pipeline, TerminalCurlingBackToItsJointKeepsItsTube) {
 // spanned the whole pair, a flat fin between them (11 % of the area off the tubes at level 2, edges 25
 // radii long; brava-records had 413 such patches).
 TEST(Pipeline, SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
-  for (double scale : {1e-3, 1.0, 1e3}) {
-    const CenterlineGraph g = build_graph(fixtures::siblings_side_by_side(scale));
-    for (int levels = 0; levels <= 3; ++levels)
-      expect_on_its_tubes(mesh_at(g, levels), g,
-                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.002, 5);
-  }
+  expect_on_its_tubes_at_every_scale(fixtures::siblings_side_by_side, 3, 0.002, 5);
 }
 
 // Not met before the separate stage parted vessels that overlap all the way back to a joint they share from
@@ -234,12 +232,7 @@ TEST(Pipeline, SiblingsFromOnePointRunningSideBySideKeepTheirPatchAtTheJoint) {
 // one, 16.9 radii off. Now the two part from the joint's reach on: 0.7 radii at most, 0.6 / 0.4 / 0.2 % of
 // the area over half a radius off at levels 0 / 1 / 2 (the crotch between them), edges up to 5.3 radii.
 TEST(Pipeline, ChildTracedBackAlongItsParentLeavesNoFin) {
-  for (double scale : {1e-3, 1.0, 1e3}) {
-    const CenterlineGraph g = build_graph(fixtures::child_traced_back_along_its_parent(scale));
-    for (int levels = 0; levels <= 2; ++levels)
-      expect_on_its_tubes(mesh_at(g, levels), g,
-                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.01, 6);
-  }
+  expect_on_its_tubes_at_every_scale(fixtures::child_traced_back_along_its_parent, 2, 0.01, 6);
 }
 
 // Not met before a square could tilt once out of its own tube's reach rather than the fat vessel's (tile,
@@ -253,12 +246,7 @@ TEST(Pipeline, ChildTracedBackAlongItsParentLeavesNoFin) {
 // (0.9 before) and edges of 3.03 radii along the same crumpled junction (2.70 before): the web's were 3.3 and
 // longer, so the edge bound sits between the two.
 TEST(Pipeline, ThinBranchWaveringOutOfAFatVesselLeavesNoWeb) {
-  for (double scale : {1e-3, 1.0, 1e3}) {
-    const CenterlineGraph g = build_graph(fixtures::thin_branch_wavering_out_of_a_fat_vessel(scale));
-    for (int levels = 0; levels <= 2; ++levels)
-      expect_on_its_tubes(mesh_at(g, levels), g,
-                          "scale " + std::to_string(scale) + " level " + std::to_string(levels), 0.03, 3.2);
-  }
+  expect_on_its_tubes_at_every_scale(fixtures::thin_branch_wavering_out_of_a_fat_vessel, 2, 0.03, 3.2);
 }
 
 // A cluster of joints no square parts becomes one patch, the convex hull of all its branches' squares: on
