@@ -30,19 +30,35 @@ constexpr double kFinest = 0.002;
 constexpr double kGap = 0.02;
 /// A vertex with the tubes of one vessel only within this many local radii is that vessel's.
 constexpr double kClear = 0.25;
+/// Rounds of the fit: the first moves every vertex, the later ones those whose move the guard cut and that
+/// it left further than kAgain local radii inside the tubes of two branches that meet (a narrow fork), away
+/// from other vessels' tubes.
+constexpr int kFitRounds = 2;
+constexpr double kAgain = 0.05;
+
+/// True when `p` lies inside the tubes of two different branches.
+bool inside_two_branches(const RoundCones& cones, const Vec3& p) {
+  const std::vector<ConeDistance> in = cones.within(p, 0.0);
+  return std::any_of(in.begin(), in.end(), [&](const ConeDistance& c) { return c.branch != in[0].branch; });
+}
 
 /// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, the
 /// cone nearest to it (outside; inside, the first found that holds it), how far outside the union it
 /// lies (0 inside), and how far off the tubes (signed) its move leaves it (NaN where the fit leaves the
-/// vertex alone: near a cap, inside another branch's tube).
+/// vertex alone: near a cap, inside another branch's tube). With `only` (a flag per vertex), the others
+/// are left alone, and so are those within kAgain of the tubes, outside two branches' tubes or next to
+/// another vessel's tube.
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
                    std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone,
-                   std::vector<double>& outside, std::vector<double>& left) {
+                   std::vector<double>& outside, std::vector<double>& left,
+                   const std::vector<char>& only = {}) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
+      if (!only.empty() && !only[v]) continue;
       const Vec3& p = vertices[v];
       ConeDistance d = cones.nearest(p, &hint, false);  // inside: only the sign
+      if (!only.empty() && cones.crowded(hint)) continue;
       nearest_cone[v] = hint;
       radius[v] = d.radius;
       outside[v] = std::max(d.distance, 0.0);
@@ -59,6 +75,8 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
         if ((!shallow || cones.crowded(hint)) && cones.inside_other_branch(p, d.branch)) continue;
       }
       if (!std::isfinite(d.distance) || cones.near_cap(p)) continue;  // a capped end is not round
+      if (!only.empty() && (std::abs(d.distance) < kAgain * d.radius || !inside_two_branches(cones, p)))
+        continue;
       left[v] = d.distance;  // inside by less than kLeast: the first cone's depth, as close as the lift needs
       if (std::abs(d.distance) <= kLeast * d.radius) continue;
       const double reach = kKeep * d.radius;
@@ -265,18 +283,38 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   FitStats stats;
   if (cones.size() == 0 || fit == Fit::none) return stats;
   const std::size_t n = mesh.vertices.size();
-  std::vector<Vec3> move(n, Vec3::Zero());
-  std::vector<double> radius(n, 0.0);
-  std::vector<int32_t> nearest_cone(n, -1);
-  std::vector<double> outside(n, 0.0);
-  std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
-  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left);
-  stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
-  const std::vector<double> reach = long_move_reach(mesh, radius);
-  if (fit == Fit::onto) add_straddle_lifts(mesh, cones, left, nearest_cone, radius, reach, move);
-  const GuardedMoves moved = move_without_folding(mesh, std::move(move), reach);
-  stats.moved = moved.moved;
-  stats.held_back = moved.held_back;
+  std::vector<char> only;  // after the first round: the vertices whose move the guard cut
+  for (int round = 0; round < kFitRounds; ++round) {
+    std::vector<Vec3> move(n, Vec3::Zero());
+    std::vector<double> radius(n, 0.0);
+    std::vector<int32_t> nearest_cone(n, -1);
+    std::vector<double> outside(n, 0.0);
+    std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
+    closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left, only);
+    if (round > 0 && std::all_of(move.begin(), move.end(), [](const Vec3& m) { return m == Vec3::Zero(); }))
+      break;  // none left to move again: the later rounds cost a pass over the whole surface each
+    // Parted vertices lie next to another vessel's tube (crowded cones), which the later rounds leave.
+    if (round == 0) stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
+    // The later rounds' few moves are each tested against the triangles they pass (a reach of zero): made
+    // again where the first round's were cut, short ones together would fold patches into each other.
+    const std::vector<double> reach =
+        round == 0 ? long_move_reach(mesh, radius) : std::vector<double>(n, 0.0);
+    if (fit == Fit::onto) add_straddle_lifts(mesh, cones, left, nearest_cone, radius, reach, move);
+    const bool last = round + 1 == kFitRounds;
+    std::vector<Vec3> meant;
+    if (!last) {
+      meant.resize(n);
+      for (std::size_t v = 0; v < n; ++v) meant[v] = rounded_to_float(mesh.vertices[v] + move[v]);
+    }
+    const GuardedMoves moved = move_without_folding(mesh, std::move(move), reach);
+    if (round == 0) stats.moved = moved.moved, stats.held_back = moved.held_back;
+    if (last || moved.held_back == 0) break;
+    // Cut where its neighbours' moves, made together with its own, would have folded or crossed: from where
+    // they now stand, its move is made again (a vertex deep inside two children's tubes at a narrow fork;
+    // elsewhere, on the thick vessels' beads, moving such vertices out only stretched faces left inside).
+    only.assign(n, 0);
+    for (std::size_t v = 0; v < n; ++v) only[v] = mesh.vertices[v] != meant[v];
+  }
   return stats;
 }
 

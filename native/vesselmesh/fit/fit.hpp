@@ -31,7 +31,7 @@ enum class Fit {
 struct FitStats {
   int64_t moved = 0;      ///< vertices moved towards the tubes' surface, all or part of the way
   int64_t held_back = 0;  ///< vertices whose move was cut (halved, or dropped) as it would have folded or
-                          ///< crossed a triangle
+                          ///< crossed a triangle, in the first round
   int64_t parted = 0;     ///< vertices given a move off another vessel's tube where the input's tubes
                           ///< overlap (some may then be held back)
 };
@@ -48,7 +48,10 @@ struct FitStats {
 /// would fold a triangle over, or carry a triangle through another part of the surface, is halved, and
 /// dropped after the sixth cut: the fit adds no folds, and no crossings by the moves long enough to make
 /// one on their own (over a fifth of the local radius or half the vertex's shortest edge); shorter moves
-/// together can add a few where surfaces already cross.
+/// together can add a few where surfaces already cross. A vertex whose move was cut and that is left over 5 %
+/// of its radius inside the tubes of two branches (a narrow fork), away from other vessels' tubes, then
+/// moves again from where it and its neighbours stand (one more round, each such move tested against the
+/// triangles it passes).
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit = Fit::onto);
 
 /// The same onto the tubes `cones` holds (built once for both the separate stage and the fit).
