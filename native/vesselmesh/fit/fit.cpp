@@ -30,10 +30,8 @@ constexpr double kFinest = 0.002;
 constexpr double kGap = 0.02;
 /// A vertex with the tubes of one vessel only within this many local radii is that vessel's.
 constexpr double kClear = 0.25;
-/// Rounds of the fit: the first moves every vertex, the later ones those whose move the guard cut and that
-/// it left further than kAgain local radii inside the tubes of two branches that meet (a narrow fork), away
-/// from other vessels' tubes.
-constexpr int kFitRounds = 2;
+/// A vertex whose move the guard cut and that it left further than this many local radii inside the tubes
+/// of two branches (a narrow fork), away from other vessels' tubes, moves again (fit_round).
 constexpr double kAgain = 0.05;
 
 /// True when `p` lies inside the tubes of two different branches.
@@ -45,20 +43,20 @@ bool inside_two_branches(const RoundCones& cones, const Vec3& p) {
 /// Each vertex's way towards the union of the cones (zero for those `fit` leaves), the local radius, the
 /// cone nearest to it (outside; inside, the first found that holds it), how far outside the union it
 /// lies (0 inside), and how far off the tubes (signed) its move leaves it (NaN where the fit leaves the
-/// vertex alone: near a cap, inside another branch's tube). With `only` (a flag per vertex), the others
+/// vertex alone: near a cap, inside another branch's tube). With `again` (a flag per vertex), the others
 /// are left alone, and so are those within kAgain of the tubes, outside two branches' tubes or next to
 /// another vessel's tube.
 void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, Fit fit,
                    std::vector<Vec3>& move, std::vector<double>& radius, std::vector<int32_t>& nearest_cone,
                    std::vector<double>& outside, std::vector<double>& left,
-                   const std::vector<char>& only = {}) {
+                   const std::vector<char>& again = {}) {
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     int32_t hint = -1;  // consecutive vertices are mostly near each other
     for (std::size_t v = begin; v < end; ++v) {
-      if (!only.empty() && !only[v]) continue;
+      if (!again.empty() && !again[v]) continue;
       const Vec3& p = vertices[v];
       ConeDistance d = cones.nearest(p, &hint, false);  // inside: only the sign
-      if (!only.empty() && cones.crowded(hint)) continue;
+      if (!again.empty() && cones.crowded(hint)) continue;
       nearest_cone[v] = hint;
       radius[v] = d.radius;
       outside[v] = std::max(d.distance, 0.0);
@@ -75,7 +73,7 @@ void closest_moves(const std::vector<Vec3>& vertices, const RoundCones& cones, F
         if ((!shallow || cones.crowded(hint)) && cones.inside_other_branch(p, d.branch)) continue;
       }
       if (!std::isfinite(d.distance) || cones.near_cap(p)) continue;  // a capped end is not round
-      if (!only.empty() && (std::abs(d.distance) < kAgain * d.radius || !inside_two_branches(cones, p)))
+      if (!again.empty() && (std::abs(d.distance) < kAgain * d.radius || !inside_two_branches(cones, p)))
         continue;
       left[v] = d.distance;  // inside by less than kLeast: the first cone's depth, as close as the lift needs
       if (std::abs(d.distance) <= kLeast * d.radius) continue;
@@ -273,6 +271,32 @@ int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::v
   return std::count(parting.begin(), parting.end(), 1);
 }
 
+/// One round of the fit: every vertex's move (with `again` empty), or again the moves of the vertices
+/// `again` flags, that the first round's guard cut, where they stay over kAgain local radii inside the
+/// tubes of two branches, away from other vessels' tubes. These few moves are each tested against the
+/// triangles they pass (a reach of zero): made as short moves, they folded patches into each other near
+/// joints (brava-bg0003: 15 vertices taken back by the check). `parted` (first round only) counts the
+/// vertices given a parting move.
+GuardedMoves fit_round(TriMesh& mesh, const RoundCones& cones, Fit fit, const std::vector<char>& again,
+                       int64_t* parted) {
+  const std::size_t n = mesh.vertices.size();
+  std::vector<Vec3> move(n, Vec3::Zero());
+  std::vector<double> radius(n, 0.0);
+  std::vector<int32_t> nearest_cone(n, -1);
+  std::vector<double> outside(n, 0.0);
+  std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
+  closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left, again);
+  const auto still = [](const Vec3& m) { return m == Vec3::Zero(); };
+  if (!again.empty() && std::all_of(move.begin(), move.end(), still))
+    return {};  // none to move again: the lifts and the guard would cost a pass over the whole surface
+  // Parted vertices lie next to another vessel's tube (crowded cones), which a second round leaves.
+  if (parted != nullptr) *parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
+  const std::vector<double> reach =
+      again.empty() ? long_move_reach(mesh, radius) : std::vector<double>(n, 0.0);
+  if (fit == Fit::onto) add_straddle_lifts(mesh, cones, left, nearest_cone, radius, reach, move);
+  return move_without_folding(mesh, std::move(move), reach);
+}
+
 }  // namespace
 
 FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
@@ -282,39 +306,13 @@ FitStats fit_to_tubes(TriMesh& mesh, const CenterlineGraph& graph, Fit fit) {
 FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
   FitStats stats;
   if (cones.size() == 0 || fit == Fit::none) return stats;
-  const std::size_t n = mesh.vertices.size();
-  std::vector<char> only;  // after the first round: the vertices whose move the guard cut
-  for (int round = 0; round < kFitRounds; ++round) {
-    std::vector<Vec3> move(n, Vec3::Zero());
-    std::vector<double> radius(n, 0.0);
-    std::vector<int32_t> nearest_cone(n, -1);
-    std::vector<double> outside(n, 0.0);
-    std::vector<double> left(n, std::numeric_limits<double>::quiet_NaN());
-    closest_moves(mesh.vertices, cones, fit, move, radius, nearest_cone, outside, left, only);
-    if (round > 0 && std::all_of(move.begin(), move.end(), [](const Vec3& m) { return m == Vec3::Zero(); }))
-      break;  // none left to move again: the later rounds cost a pass over the whole surface each
-    // Parted vertices lie next to another vessel's tube (crowded cones), which the later rounds leave.
-    if (round == 0) stats.parted = parting_moves(mesh, cones, nearest_cone, radius, outside, move);
-    // The later rounds' few moves are each tested against the triangles they pass (a reach of zero): made
-    // again where the first round's were cut, short ones together would fold patches into each other.
-    const std::vector<double> reach =
-        round == 0 ? long_move_reach(mesh, radius) : std::vector<double>(n, 0.0);
-    if (fit == Fit::onto) add_straddle_lifts(mesh, cones, left, nearest_cone, radius, reach, move);
-    const bool last = round + 1 == kFitRounds;
-    std::vector<Vec3> meant;
-    if (!last) {
-      meant.resize(n);
-      for (std::size_t v = 0; v < n; ++v) meant[v] = rounded_to_float(mesh.vertices[v] + move[v]);
-    }
-    const GuardedMoves moved = move_without_folding(mesh, std::move(move), reach);
-    if (round == 0) stats.moved = moved.moved, stats.held_back = moved.held_back;
-    if (last || moved.held_back == 0) break;
-    // Cut where its neighbours' moves, made together with its own, would have folded or crossed: from where
-    // they now stand, its move is made again (a vertex deep inside two children's tubes at a narrow fork;
-    // elsewhere, on the thick vessels' beads, moving such vertices out only stretched faces left inside).
-    only.assign(n, 0);
-    for (std::size_t v = 0; v < n; ++v) only[v] = mesh.vertices[v] != meant[v];
-  }
+  const GuardedMoves first = fit_round(mesh, cones, fit, {}, &stats.parted);
+  stats.moved = first.moved;
+  stats.held_back = first.held_back;
+  // Cut where its neighbours' moves, made together with its own, would have folded or crossed: from where
+  // they now stand, its move is made again (a vertex deep inside two children's tubes at a narrow fork;
+  // elsewhere, on the thick vessels' beads, moving such vertices out only stretched faces left inside).
+  if (first.held_back > 0) fit_round(mesh, cones, fit, first.cut, nullptr);
   return stats;
 }
 

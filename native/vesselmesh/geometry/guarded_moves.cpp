@@ -285,9 +285,11 @@ GuardedMoves move_without_folding(TriMesh& mesh, std::vector<Vec3> move, const s
     }
     if (!changed) break;
   }
+  stats.cut.assign(n, 0);
   for (std::size_t v = 0; v < n; ++v) {
     stats.moved += move[v] != Vec3::Zero();
-    stats.held_back += halved[v] != 0;
+    stats.cut[v] = halved[v] != 0;
+    stats.held_back += stats.cut[v];
   }
   mesh.vertices = std::move(moved);
   return stats;

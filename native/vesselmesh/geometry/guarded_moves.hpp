@@ -13,6 +13,7 @@ struct GuardedMoves {
   int64_t moved = 0;      ///< vertices moved, all or part of the way
   int64_t held_back = 0;  ///< vertices whose move was cut (halved, or dropped) as it would have folded or
                           ///< crossed a triangle
+  std::vector<char> cut;  ///< per vertex, 1 where its move was cut
 };
 
 /// How far each vertex of `mesh` may move before its move is long (move_without_folding): half its shortest
