@@ -26,13 +26,13 @@ namespace {
 
 using EdgeKey = std::pair<int32_t, int32_t>;
 
-EdgeKey edge_key(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
+EdgeKey sorted_edge(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
 
 /// The documented edge numbering: unique edges (lo, hi) in lexicographic order.
 std::map<EdgeKey, int32_t> edge_numbering(const TriMesh& mesh) {
   std::map<EdgeKey, int32_t> numbering;
   for (const Tri& t : mesh.faces)
-    for (int k = 0; k < 3; ++k) numbering.emplace(edge_key(t[k], t[(k + 1) % 3]), 0);
+    for (int k = 0; k < 3; ++k) numbering.emplace(sorted_edge(t[k], t[(k + 1) % 3]), 0);
   int32_t e = 0;
   for (auto& entry : numbering) entry.second = e++;
   return numbering;
@@ -167,7 +167,7 @@ void expect_matches_openmesh(const TriMesh& mesh, int levels) {
     ours_of_om.resize(nv + numbering.size());
     for (const auto& e : om.edges()) {
       const int32_t a = ours_of_om[e.v0().idx()], b = ours_of_om[e.v1().idx()];
-      ours_of_om[nv + e.idx()] = nv + numbering.at(edge_key(a, b));
+      ours_of_om[nv + e.idx()] = nv + numbering.at(sorted_edge(a, b));
     }
 
     om_loop(1);
@@ -242,7 +242,7 @@ TEST(Loop, NumberingKeepsOldVerticesThenEdgeVerticesInEdgeOrderAndSplitsFacesAsD
   const TriMesh m = loop_subdivide(mesh);
   const std::map<EdgeKey, int32_t> numbering = edge_numbering(mesh);
   const int32_t nv = static_cast<int32_t>(mesh.vertices.size());
-  const auto mid = [&](int32_t a, int32_t b) { return nv + numbering.at(edge_key(a, b)); };
+  const auto mid = [&](int32_t a, int32_t b) { return nv + numbering.at(sorted_edge(a, b)); };
   for (size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto [a, b, c] = mesh.faces[f];
     EXPECT_EQ(m.faces[4 * f], (Tri{a, mid(a, b), mid(c, a)}));

@@ -1,18 +1,22 @@
 // Octagonal sections: splitting the squares' sides keeps every joint kind's base mesh a closed,
 // consistently oriented surface of the same genus, puts a tube section's eight vertices on one circle
-// about its centre, and leaves a joint patch's hull where it was.
+// about its centre, and leaves a joint patch's hull where it was. Long joint-patch edges split after them
+// keep it closed, oriented and of its genus, and at a narrow fork, where the joint's hull is faces a
+// radius long, bring the default surface onto the tubes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
 
 #include "fixtures.hpp"
 #include "vesselmesh/check/check_mesh.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/pipeline.hpp"
 #include "vesselmesh/tile/octagons.hpp"
+#include "vesselmesh/tile/patch_edges.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 using namespace vesselmesh;
@@ -20,6 +24,7 @@ using namespace vesselmesh;
 namespace {
 
 class Octagons : public testing::TestWithParam<fixtures::Named> {};
+class PatchEdges : public testing::TestWithParam<fixtures::Named> {};
 
 BaseMesh squares(const CenterlineGraph& g) {
   TileOptions o;
@@ -29,6 +34,17 @@ BaseMesh squares(const CenterlineGraph& g) {
 
 constexpr double kShrink = 0.728;
 
+/// `after`, a refinement of `before`, is a closed, consistently oriented surface of the same genus and
+/// components, facing out.
+void expect_same_closed_surface(const BaseMesh& before, const BaseMesh& after, const std::string& what) {
+  const TopologyReport a = check_topology(triangulate(before)), b = check_topology(triangulate(after));
+  EXPECT_TRUE(b.closed_manifold()) << what;
+  EXPECT_EQ(b.inconsistent_edges, 0) << what;
+  EXPECT_EQ(b.genus, a.genus) << what;
+  EXPECT_EQ(b.components, a.components) << what;
+  EXPECT_GT(b.signed_volume, 0) << what;
+}
+
 }  // namespace
 
 TEST_P(Octagons, SplitBaseMeshIsClosedOrientedWithTheSameGenusAtEveryScale) {
@@ -36,12 +52,7 @@ TEST_P(Octagons, SplitBaseMeshIsClosedOrientedWithTheSameGenusAtEveryScale) {
     const CenterlineGraph g = build_graph(GetParam().make(scale));
     const BaseMesh before = squares(g);
     const BaseMesh after = octagonal_sections(before, kShrink);
-    const TopologyReport a = check_topology(triangulate(before)), b = check_topology(triangulate(after));
-    EXPECT_TRUE(b.closed_manifold()) << GetParam().name << " scale " << scale;
-    EXPECT_EQ(b.inconsistent_edges, 0) << GetParam().name;
-    EXPECT_EQ(b.genus, a.genus) << GetParam().name;
-    EXPECT_EQ(b.components, a.components) << GetParam().name;
-    EXPECT_GT(b.signed_volume, 0) << GetParam().name;
+    expect_same_closed_surface(before, after, GetParam().name + " scale " + std::to_string(scale));
     EXPECT_TRUE(after.squares.empty());
   }
 }
@@ -95,3 +106,36 @@ TEST_P(Octagons, TubeSectionsAreRegularOctagonsAndPatchSquaresKeepTheirSides) {
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, Octagons, testing::ValuesIn(fixtures::joint_kinds()),
                          [](const auto& info) { return info.param.name; });
+
+TEST_P(PatchEdges, SplitBaseMeshIsClosedOrientedWithTheSameGenusAtEveryScale) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(GetParam().make(scale));
+    const BaseMesh before = octagonal_sections(squares(g), kShrink);
+    const BaseMesh after = split_long_patch_edges(before, RoundCones(g), subdivision_radius_scale(8));
+    expect_same_closed_surface(before, after, GetParam().name + " scale " + std::to_string(scale));
+    EXPECT_EQ(after.vertices.size(), after.axes.size());
+    // Each new vertex splits one edge into two triangles each side.
+    EXPECT_EQ(after.triangles.size() - before.triangles.size(),
+              2 * (after.vertices.size() - before.vertices.size()));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, PatchEdges, testing::ValuesIn(fixtures::joint_kinds()),
+                         [](const auto& info) { return info.param.name; });
+
+// An aorta's iliac bifurcation (children leaving at a narrow angle): its joint hull's faces are chords of
+// the tubes, a radius long at the default level. Split, they follow them: face centroids' 95th percentile
+// 7.4 → 4.9 % of the radius, the furthest 10.7 → 6.8 % (the target for the 95th: 6 %).
+TEST(PatchEdges, TheFacesOfANarrowForkComeOntoTheTubesAtTheDefaultLevelAtEveryScale) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::narrow_aortic_fork(scale));
+    const BaseMesh before = octagonal_sections(squares(g), kShrink);
+    EXPECT_GT(split_long_patch_edges(before, RoundCones(g), subdivision_radius_scale(8)).vertices.size(),
+              before.vertices.size());
+    const MeshResult result = mesh_centerline(g, MeshOptions());
+    EXPECT_EQ(result.verification.problem(), "") << "scale " << scale;
+    const FidelityReport f = radius_fidelity(result.mesh, g);
+    EXPECT_LE(f.centroid_error.p95, 0.06) << "scale " << scale;
+    EXPECT_LE(f.largest_centroid_offset, 0.08) << "scale " << scale;
+  }
+}

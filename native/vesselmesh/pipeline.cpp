@@ -14,6 +14,7 @@
 #include "vesselmesh/round/round.hpp"
 #include "vesselmesh/separate/hidden.hpp"
 #include "vesselmesh/tile/octagons.hpp"
+#include "vesselmesh/tile/patch_edges.hpp"
 #include "vesselmesh/triangulate/triangulate.hpp"
 
 namespace vesselmesh {
@@ -154,7 +155,9 @@ Built build_surface(Tubes tubes, const TileOptions& tile, const MeshOptions& opt
   try {
     base = tile_base_mesh(tubes.centerline, tile);
     if (options.sides == 8)
-      base = octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4));
+      base = split_long_patch_edges(
+          octagonal_sections(std::move(base), subdivision_radius_scale(8) / subdivision_radius_scale(4)),
+          tubes.get(), subdivision_radius_scale(8));
   } catch (const SizeLimitError&) {
     throw too_large(2 * options.sides * per_base_triangle * tile.max_sections, true, tile.max_sections,
                     options);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vesselmesh/centerline.hpp"
@@ -15,6 +16,12 @@ using Tri = std::array<int32_t, 3>;
 
 /// A face with a corner twice has no area, whatever the positions.
 inline bool repeats_vertex(const Tri& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; }
+
+/// One key for the edge between vertices a and b, whichever way round: for hashing a mesh's edges.
+inline uint64_t edge_key(int32_t a, int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
 
 /// A named per-vertex scalar (curvature measures and the like), written to PLY as a float property.
 struct VertexProperty {

@@ -6,15 +6,6 @@
 
 namespace vesselmesh {
 
-namespace {
-
-uint64_t edge_key(int32_t a, int32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
-}
-
-}  // namespace
-
 BaseMesh octagonal_sections(BaseMesh base, double shrink) {
   std::unordered_map<uint64_t, int32_t> split;  // side → its new vertex; −1 until one is placed
   for (const auto& q : base.quads)
