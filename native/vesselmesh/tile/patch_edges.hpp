@@ -19,10 +19,10 @@
 namespace vesselmesh {
 
 /// `base` (octagonal sections, no `squares`) with the inner edges of its joint patches (between two
-/// triangles whose corners are all joint-patch vertices, TubeAxis weight 0) that are 2 to 4 local radii long
-/// (the smaller TubeAxis radius of their ends) and the longest of both their triangles split in two, twice
-/// over. The new vertex carries the mean of its ends' TubeAxis, its offset to the mean of their centres.
-/// Closed and oriented wherever `base` is, with the same genus.
+/// triangles, both ends of TubeAxis weight 0) that are 2 to 4 local radii long (the smaller TubeAxis radius
+/// of their ends) and the longest of both their triangles split in two, twice over. The new vertex carries
+/// the mean of its ends' TubeAxis, its offset to the mean of their centres. Closed and oriented wherever
+/// `base` is, with the same genus.
 BaseMesh split_long_patch_edges(BaseMesh base, const RoundCones& cones, double scale);
 
 }  // namespace vesselmesh
