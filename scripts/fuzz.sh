@@ -5,7 +5,9 @@
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (default 30 s; targets swc vtk vtp csv pipeline)
 # Environment: FUZZ_TIMEOUT (s per input, default 10), FUZZ_RSS_MB (default 2048), FUZZ_EXTRA (folders
 # of extra seed files, space-separated: e.g. ../shared/data/brava-records, used in place, never copied
-# into the repository), FUZZ_ARGS (more libFuzzer flags); others reach the targets (FUZZ_VERBOSE=1).
+# into the repository), FUZZ_SEED (libFuzzer's random seed: the same inputs in the same order on every run
+# from an empty corpus, as CI runs them; default a new seed each run), FUZZ_ARGS (more libFuzzer flags);
+# others reach the targets (FUZZ_VERBOSE=1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -58,7 +60,8 @@ for t in "${targets[@]}"; do
   rc=0
   # shellcheck disable=SC2086
   "$build/bin/fuzz_$t" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb="$rss_mb" \
-    -dict="$root/native/fuzz/$t.dict" -artifact_prefix="$artifacts/" -print_final_stats=1 ${FUZZ_ARGS:-} \
+    -dict="$root/native/fuzz/$t.dict" -artifact_prefix="$artifacts/" -print_final_stats=1 \
+    ${FUZZ_SEED:+-seed=$FUZZ_SEED} ${FUZZ_ARGS:-} \
     "$corpus" "${seeds[@]}" > "$log" 2>&1 || rc=$?
   # The last status line: "#N DONE cov: C ft: F corp: U/S lim: ... exec/s: E rss: ...".
   status=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)

@@ -1,6 +1,7 @@
 #include "vesselmesh/pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -57,6 +58,8 @@ std::string Verification::problem() const {
 
 namespace {
 
+using FacePair = std::array<int32_t, 2>;  // two crossing faces (intersecting_face_pairs)
+
 SizeLimitError too_large(int64_t triangles, bool at_least, int64_t sections, const MeshOptions& options) {
   return SizeLimitError("the surface would have " + std::string(at_least ? "more than " : "") +
                         std::to_string(triangles) + " triangles at level " +
@@ -76,9 +79,18 @@ CrossingCheck crossing_check(int64_t faces, Verify how) {
   return CrossingCheck::none;
 }
 
+/// The crossing counts of `v` from the crossing `pairs` of `mesh`.
+void count_crossings(Verification& v, const TriMesh& mesh, const CenterlineGraph& centerline,
+                     const std::vector<FacePair>& pairs) {
+  const IntersectionReport x = intersection_report(mesh, &centerline, pairs);
+  v.crossing_pairs = x.pairs;
+  v.pairs_in_overlapping_tubes = x.pairs_in_overlapping_tubes;
+}
+
 /// `near_joints`: faces_near_joints of the mesh where only those are checked for crossings, else empty.
+/// `pairs` receives the crossing pairs found (intersecting_face_pairs).
 Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Verify how,
-                    const std::vector<char>& near_joints) {
+                    const std::vector<char>& near_joints, std::vector<FacePair>& pairs) {
   Verification v;
   v.topology = check_topology(mesh);
   v.expected_components = centerline.components;
@@ -86,10 +98,10 @@ Verification verify(const TriMesh& mesh, const CenterlineGraph& centerline, Veri
   const CrossingCheck check = crossing_check(static_cast<int64_t>(mesh.faces.size()), how);
   v.crossings_checked = check == CrossingCheck::everywhere;
   v.crossings_checked_near_joints = check == CrossingCheck::near_joints;
+  pairs.clear();
   if (check != CrossingCheck::none) {
-    const IntersectionReport x = find_self_intersections(mesh, &centerline, near_joints);
-    v.crossing_pairs = x.pairs;
-    v.pairs_in_overlapping_tubes = x.pairs_in_overlapping_tubes;
+    pairs = intersecting_face_pairs(mesh, near_joints);
+    count_crossings(v, mesh, centerline, pairs);
   }
   return v;
 }
@@ -142,6 +154,7 @@ struct Tubes {
 struct Built {
   std::vector<char> near_joints;  ///< faces_near_joints where only those were checked for crossings
   std::vector<Vec3> lost_loops;   ///< where the tile stage gave a loop's tunnel up (BaseMesh::lost_loops)
+  std::vector<FacePair> crossing_pairs;  ///< where it crosses itself, as its check found
 };
 
 /// Builds the surface from the tile stage on into `result`: tiled, triangulated, subdivided, rounded,
@@ -170,7 +183,7 @@ Built build_surface(Tubes tubes, const TileOptions& tile, const MeshOptions& opt
   result.joint_patches = base.joints;
   result.absorbed_branches = base.absorbed_branches;
   result.tunnels = base.tunnels;
-  Built built{{}, std::move(base.lost_loops)};
+  Built built{{}, std::move(base.lost_loops), {}};
 
   start = Clock::now();
   TriMesh& mesh = result.mesh;
@@ -209,12 +222,13 @@ Built build_surface(Tubes tubes, const TileOptions& tile, const MeshOptions& opt
   // they hold.
   for (Vec3& p : mesh.vertices) p = rounded_to_float(p);
   start = Clock::now();
-  result.verification = verify(mesh, tubes.centerline, options.verify, near_joints);
+  std::vector<FacePair>& pairs = built.crossing_pairs;
+  result.verification = verify(mesh, tubes.centerline, options.verify, near_joints, pairs);
   result.taken_back_vertices = 0;
   if (!before_fit.empty() && crosses(result.verification)) {
-    result.taken_back_vertices = take_back_crossing_moves(mesh, before_fit, near_joints);
-    if (result.taken_back_vertices > 0)
-      result.verification = verify(mesh, tubes.centerline, options.verify, near_joints);
+    // Moving vertices back changes no face: the rest of the check holds.
+    result.taken_back_vertices = take_back_crossing_moves(mesh, before_fit, near_joints, pairs);
+    if (result.taken_back_vertices > 0) count_crossings(result.verification, mesh, tubes.centerline, pairs);
   }
   record(result, "verify", start, mesh.vertices.size(), mesh.faces.size());
   return built;
@@ -278,7 +292,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
     } else {
       if (!crosses(v) && !lost) break;
       if (crosses(v))
-        for (const auto& pair : intersecting_face_pairs(result.mesh, built.near_joints))
+        for (const auto& pair : built.crossing_pairs)
           for (int32_t f : pair) tile.full_squares_near.push_back(centroid(result.mesh, f));
       // vesselgraph-demo at levels 0 and 1 lost a loop whose joints merged otherwise with small squares
       // round them, and whose tunnel then could not open.

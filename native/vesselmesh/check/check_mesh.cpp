@@ -250,7 +250,11 @@ TopologyReport check_topology(const TriMesh& mesh) {
 IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline,
                                            const std::vector<char>& among) {
   require_valid_indices(mesh);
-  const std::vector<std::array<int32_t, 2>> hits = intersecting_face_pairs(mesh, among);
+  return intersection_report(mesh, centerline, intersecting_face_pairs(mesh, among));
+}
+
+IntersectionReport intersection_report(const TriMesh& mesh, const CenterlineGraph* centerline,
+                                       const std::vector<std::array<int32_t, 2>>& hits) {
   IntersectionReport r;
   r.pairs = static_cast<int64_t>(hits.size());
   r.examples.assign(hits.begin(),

@@ -112,6 +112,10 @@ TopologyReport check_topology(const TriMesh& mesh);
 /// With `among` (a flag per face), only the pairs with a flagged face (intersecting_face_pairs).
 IntersectionReport find_self_intersections(const TriMesh& mesh, const CenterlineGraph* centerline = nullptr,
                                            const std::vector<char>& among = {});
+/// The report of the intersecting pairs `hits` of `mesh` (intersecting_face_pairs), classed as
+/// find_self_intersections classes them.
+IntersectionReport intersection_report(const TriMesh& mesh, const CenterlineGraph* centerline,
+                                       const std::vector<std::array<int32_t, 2>>& hits);
 QualityReport triangle_quality(const TriMesh& mesh);
 /// Signed distance of each vertex to the union of the centerline edges' round cones (two spheres and
 /// their tangent cone; the minimum over edges), divided by the local radius (that of the cone where

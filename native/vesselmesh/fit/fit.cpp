@@ -317,11 +317,11 @@ FitStats fit_to_tubes(TriMesh& mesh, const RoundCones& cones, Fit fit) {
 }
 
 int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
-                                 const std::vector<char>& among) {
+                                 const std::vector<char>& among, std::vector<std::array<int32_t, 2>>& pairs) {
   int64_t taken_back = 0;
-  for (int round = 0; round < kTakeBackRounds; ++round) {
+  for (int round = 0; round < kTakeBackRounds && !pairs.empty(); ++round) {
     int64_t now = 0;
-    for (const auto& pair : intersecting_face_pairs(mesh, among))
+    for (const auto& pair : pairs)
       for (int32_t f : pair)
         for (int32_t v : mesh.faces[f]) {
           const Vec3 back = rounded_to_float(before[v]);
@@ -329,6 +329,7 @@ int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
         }
     if (now == 0) break;
     taken_back += now;
+    pairs = intersecting_face_pairs(mesh, among);
   }
   return taken_back;
 }

@@ -11,7 +11,9 @@
 // out a little along its normal, so that the flat faces between the vertices straddle the round tubes
 // rather than cut inside them.
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
@@ -64,9 +66,11 @@ constexpr int kTakeBackRounds = 4;
 /// that the fit moved go back to where they stood before it (`before`, one position per vertex, rounded to
 /// float as the mesh's are), round after round until no face crosses, none of their corners moved, or
 /// kTakeBackRounds are done. The fit's guard tests only its longer moves against other triangles; shorter
-/// ones together can still make faces cross (guarded_moves.hpp). With `among` (a flag per face), only where
-/// a flagged face crosses (intersecting_face_pairs). Returns how many vertices went back.
+/// ones together can still make faces cross (guarded_moves.hpp). `pairs` holds the crossing pairs of the
+/// mesh as it stands, with `among` (a flag per face) only those with a flagged face
+/// (intersecting_face_pairs), and is left holding those of the mesh as it leaves it: the caller's check has
+/// found the first, and needs the last. Returns how many vertices went back.
 int64_t take_back_crossing_moves(TriMesh& mesh, const std::vector<Vec3>& before,
-                                 const std::vector<char>& among = {});
+                                 const std::vector<char>& among, std::vector<std::array<int32_t, 2>>& pairs);
 
 }  // namespace vesselmesh
