@@ -448,6 +448,25 @@ inline CenterlineData siblings_side_by_side(double scale) {
   return d;
 }
 
+/// A narrow fork whose children's tubes overlap beyond the joint's reach, as two of brava-records BH0036's
+/// do: from a trunk of radius 0.5, two children 8.3° apart, their tubes overlapping for 14 radii from the
+/// joint (its reach is 3), then turning away from each other.
+inline CenterlineData narrow_fork_overlapping_beyond_its_reach(double scale) {
+  CenterlineData d = start(scale * Vec3(16, 0, 0), 0.5 * scale);
+  const int32_t joint = run(d, 0, Vec3::Zero(), 2, 0.5 * scale);
+  for (const auto& [side, r, y] : {std::tuple{1.0, 0.49, -0.6}, std::tuple{-1.0, 0.5, -0.5}}) {
+    d.points.push_back(scale * Vec3(-8.3, 0, 0.6 * side));
+    d.radius.push_back(r * scale);
+    d.edges.push_back({joint, static_cast<int32_t>(d.points.size()) - 1});
+    for (double z : {3.5, 7.0}) {
+      d.points.push_back(scale * Vec3(-8.3, y, z * side));
+      d.radius.push_back(r * scale);
+      d.edges.push_back({static_cast<int32_t>(d.points.size()) - 2, static_cast<int32_t>(d.points.size()) - 1});
+    }
+  }
+  return d;
+}
+
 /// A child traced straight back along its parent from their joint, as brava-records BH0004 has one: a
 /// parent of radius 0.45 along an arc of radius 15 (115°, points about 1.25 apart) into the joint, a child
 /// that turns back inside the parent's tube and runs the arc 0.7 nearer its centre to beside the parent's

@@ -250,20 +250,31 @@ int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::v
   parallel_for(vertices.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       if (clear[v] || owner[v] < 0) continue;
+      // `x` on its own side of the plane between its vessel's tube and each other tube it lies in or next to.
+      const auto part = [&](const Vec3& x) {
+        const std::vector<ConeDistance> near = cones.within(x, kClear * radius[v]);
+        const ConeDistance* own = nullptr;  // the closest surface of its own vessel's tubes
+        for (const ConeDistance& c : near)
+          if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance)))
+            own = &c;
+        if (own == nullptr) return x;
+        const Vec3 ca = x - (own->distance + own->radius) * own->direction;  // centre of its sphere
+        Vec3 q = x;
+        for (const ConeDistance& c : near) {
+          if (c.branch == owner[v] || c.distance >= kGap * c.radius || cones.meet_near(owner[v], c.branch, x))
+            continue;
+          const Vec3 cb = x - (c.distance + c.radius) * c.direction;
+          q = parted(q, ca, own->radius, cb, c.radius, kGap * std::min(own->radius, c.radius));
+        }
+        return q;
+      };
       const Vec3& p = vertices[v];
-      const std::vector<ConeDistance> near = cones.within(p, kClear * radius[v]);
-      const ConeDistance* own = nullptr;  // the closest surface of its own vessel's tubes
-      for (const ConeDistance& c : near)
-        if (c.branch == owner[v] && (own == nullptr || std::abs(c.distance) < std::abs(own->distance)))
-          own = &c;
-      if (own == nullptr) continue;
-      const Vec3 ca = p - (own->distance + own->radius) * own->direction;  // centre of its sphere
-      Vec3 q = p;
-      for (const ConeDistance& c : near) {
-        if (c.branch == owner[v] || c.distance >= kGap * c.radius || cones.meet_near(owner[v], c.branch, p))
-          continue;
-        const Vec3 cb = p - (c.distance + c.radius) * c.direction;
-        q = parted(q, ca, own->radius, cb, c.radius, kGap * std::min(own->radius, c.radius));
+      Vec3 q = part(p);
+      // Outside the other tube, its move onto its own tube can still carry it in where the two overlap (the
+      // crotch of a narrow fork, beyond the joint's reach: BH0036 crossed itself there at level 2).
+      if (q == p && move[v] != Vec3::Zero()) {
+        const Vec3 target = p + move[v];
+        if (const Vec3 landed = part(target); landed != target) q = landed;
       }
       if (q != p) move[v] = q - p, parting[v] = 1;
     }
