@@ -234,11 +234,11 @@ std::vector<int32_t> owners(const TriMesh& mesh, const RoundCones& cones,
 }
 
 /// Where the input's tubes overlap away from the joints their vessels share, each vessel's surface runs
-/// through the other's tube and the two cross. Each vertex in (or next to) another vessel's tube gets the
-/// move onto its own side of the plane between the two tubes, in place of its move onto the union: the
-/// surfaces meet flat, like vessels pressed together, and the outside of the union, all that shows, stays.
-/// Near a joint the two vessels share, their tubes meet by design and nothing is parted. Returns the
-/// number of vertices given such a move.
+/// through the other's tube and the two cross. Each vertex in (or next to) another vessel's tube, or whose
+/// move would land it there, gets the move onto its own side of the plane between the two tubes, in place
+/// of its move onto the union: the surfaces meet flat, like vessels pressed together, and the outside of the
+/// union, all that shows, stays. Near a joint the two vessels share, their tubes meet by design and nothing
+/// is parted. Returns the number of vertices given such a move.
 int64_t parting_moves(const TriMesh& mesh, const RoundCones& cones, const std::vector<int32_t>& nearest_cone,
                       const std::vector<double>& radius, const std::vector<double>& outside,
                       std::vector<Vec3>& move) {
