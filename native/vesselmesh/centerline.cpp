@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "vesselmesh/error.hpp"
 
@@ -26,8 +27,8 @@ void check_radii(const std::vector<double>& radii, const char* kind, const std::
   }
 }
 
-/// The limits of kMaxCoordinate, kMinRadiusOfSize, kMinRadius and kMaxLengthOverRadius, on data whose indices and
-/// radii are otherwise valid.
+/// The limits of kMaxCoordinate, kMinRadiusOfSize, kMinRadius, kMaxLengthOverRadius and
+/// kMinRadiusInFloatSteps, on data whose indices and radii are otherwise valid.
 void check_scale(const CenterlineData& data, const std::string& source) {
   const bool per_point = !data.radius.empty();
   Vec3 lo = data.points[0], hi = data.points[0];
@@ -50,7 +51,8 @@ void check_scale(const CenterlineData& data, const std::string& source) {
   auto thin_message = [&](double r) {
     return "radius " + number_text(r) + " is below " + number_text(kMinRadiusOfSize) +
            " of the data set's size " + number_text(size) +
-           " (its extent, its distance from the origin or its largest radius): too thin to mesh at this scale";
+           " (its extent, its distance from the origin or its largest radius): too thin to mesh at this "
+           "scale";
   };
   for (std::size_t i = 0; i < data.radius.size(); ++i)
     if (too_thin(data.radius[i])) throw InputError(source, element("point", i), thin_message(data.radius[i]));
@@ -66,7 +68,6 @@ void check_scale(const CenterlineData& data, const std::string& source) {
   };
   too_small(data.radius, "point");
   too_small(data.edge_radius, "edge");
-
   bool any_length = false;
   for (std::size_t e = 0; e < data.edges.size(); ++e) {
     const auto [a, b] = data.edges[e];
@@ -83,6 +84,22 @@ void check_scale(const CenterlineData& data, const std::string& source) {
   }
   if (!any_length)
     throw InputError(source, "", "every edge joins two points at the same place: nothing to mesh");
+  // A float's step at a point: the largest of its coordinates' magnitudes times float epsilon.
+  auto step = [&](int32_t i) {
+    return data.points[i].cwiseAbs().maxCoeff() * std::numeric_limits<float>::epsilon();
+  };
+  auto coarse = [&](double r, double at, std::size_t i, const char* kind) {
+    if (r < kMinRadiusInFloatSteps * at)
+      throw InputError(source, element(kind, i),
+                       "radius " + number_text(r) + " is under " + number_text(kMinRadiusInFloatSteps) +
+                           " steps of the floats the surface is written in, which lie " + number_text(at) +
+                           " apart where it is: too thin to write at this distance from the origin (move the "
+                           "data nearer the origin)");
+  };
+  for (std::size_t i = 0; i < data.radius.size(); ++i)
+    coarse(data.radius[i], step(static_cast<int32_t>(i)), i, "point");
+  for (std::size_t e = 0; e < data.edge_radius.size(); ++e)
+    coarse(data.edge_radius[e], std::max(step(data.edges[e][0]), step(data.edges[e][1])), e, "edge");
 }
 
 }  // namespace
@@ -90,20 +107,23 @@ void check_scale(const CenterlineData& data, const std::string& source) {
 void validate(const CenterlineData& data, const std::string& source) {
   const std::size_t n = data.points.size();
   if (n == 0) throw InputError(source, "", "no points");
-  if (data.edges.empty()) throw InputError(source, "", "no edges: a centerline needs at least two connected points");
+  if (data.edges.empty())
+    throw InputError(source, "", "no edges: a centerline needs at least two connected points");
   for (std::size_t i = 0; i < n; ++i)
-    if (!data.points[i].allFinite()) throw InputError(source, element("point", i), "coordinate is not a finite number");
+    if (!data.points[i].allFinite())
+      throw InputError(source, element("point", i), "coordinate is not a finite number");
 
   const bool per_point = !data.radius.empty();
   const bool per_edge = !data.edge_radius.empty();
   if (per_point == per_edge)
     throw InputError(source, "", per_point ? "radius given both per point and per edge" : "no radius");
   if (per_point && data.radius.size() != n)
-    throw InputError(source, "", std::to_string(data.radius.size()) + " point radii for " + std::to_string(n) +
-                                     " points");
+    throw InputError(
+        source, "", std::to_string(data.radius.size()) + " point radii for " + std::to_string(n) + " points");
   if (per_edge && data.edge_radius.size() != data.edges.size())
-    throw InputError(source, "", std::to_string(data.edge_radius.size()) + " edge radii for " +
-                                     std::to_string(data.edges.size()) + " edges");
+    throw InputError(source, "",
+                     std::to_string(data.edge_radius.size()) + " edge radii for " +
+                         std::to_string(data.edges.size()) + " edges");
   check_radii(data.radius, "point", source);
   check_radii(data.edge_radius, "edge", source);
 
@@ -114,7 +134,8 @@ void validate(const CenterlineData& data, const std::string& source) {
                          "point index " + std::to_string(v) + " is outside 0.." + std::to_string(n - 1));
   for (int32_t r : data.roots)
     if (r < 0 || static_cast<std::size_t>(r) >= n)
-      throw InputError(source, "", "root index " + std::to_string(r) + " is outside 0.." + std::to_string(n - 1));
+      throw InputError(source, "",
+                       "root index " + std::to_string(r) + " is outside 0.." + std::to_string(n - 1));
   check_scale(data, source);
 }
 

@@ -29,6 +29,11 @@ constexpr double kMaxCoordinate = 1e30;
 /// Radii at least this fraction of the data set's size (the largest of its extent, its distance from the
 /// origin and its largest radius): a tube thinner than that is lost in the rounding of its own coordinates.
 constexpr double kMinRadiusOfSize = 1e-12;
+/// Radii at least this many steps of a float at their point's coordinates: the surface is written, and held by
+/// Blender, in floats, and a tube thinner than that is lost in their rounding (a radius of 1 at 2e8 from the
+/// origin, where floats lie 16 apart, gave a surface of degenerate faces). Millimetre, micrometre and metre
+/// data sets lie thousands of steps above it.
+constexpr double kMinRadiusInFloatSteps = 32;
 /// Radii at least this large: the surface's areas (lengths squared) and the predicates' volumes (cubed)
 /// stay normal doubles. A data set of radius 1e-154 gave faces whose areas underflowed to zero.
 constexpr double kMinRadius = 1e-100;
