@@ -527,6 +527,32 @@ inline CenterlineData fat_trunk_with_a_side_branch_at_every_point(double scale) 
   return d;
 }
 
+/// neuron-hemibrain-da1's soma, cut out with the trunk it sits on and scaled by 1/37.5: one point of radius
+/// 10 at the origin, 6.1 from the trunk's joint of radius 6.2, the two merged into one patch with three
+/// more joints of radius 4 to 8 and terminals inside the soma; the branches leaving the patch are at most
+/// 4.6 wide where their squares stand. The soma's sphere is the widest part of the union.
+inline CenterlineData soma_merged_with_its_trunks_joints(double scale) {
+  CenterlineData d = start(scale * Vec3(14.0507, 9.848, 0.256), 2.4 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{5.3947, 2.6880, -1.0533}, 6.1679, 0},    {{4.9840, 4.5147, -7.7440}, 4.9861, 1},
+      {{7.8133, 7.3440, -11.0453}, 2.6992, 2},   {{8.7173, 8.2480, -14.6773}, 1.4199, 3},
+      {{10.3173, 8.7813, -7.2107}, 2.8432, 3},   {{10.5707, 8.9840, -7.1600}, 2.6994, 5},
+      {{12.9840, 9.3147, -4.0107}, 1.6563, 6},   {{14.5840, 10.9147, -4.0107}, 0.9259, 7},
+      {{0.0000, 0.0000, 0.0000}, 10.0000, 1},    {{-3.8320, -1.8427, 0.8533}, 4.1646, 9},
+      {{-8.3493, -4.0187, 1.8560}, 3.1064, 10},  {{6.5840, 6.1147, -15.2107}, 0.4876, 4},
+      {{6.0507, 6.1147, -15.2107}, 0.2667, 12},  {{-7.0507, 0.7760, -5.4640}, 3.9383, 9},
+      {{-11.5493, 0.7813, -5.6107}, 0.8000, 14}, {{-11.0160, -2.9520, -0.2773}, 1.6563, 10},
+      {{-0.3493, -0.8187, -4.0107}, 7.8568, 14}, {{8.1840, 8.7813, -4.0107}, 2.1185, 2},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
+
 /// A random tree (native/python/tests/test_random_trees.py, seed 1, the third) of 20 points crowded
 /// within a few radii of its root, radii 0.14 to 0.29: its branches between joints are one or two radii
 /// long and turn by up to a right angle, so that the squares closing two patches faced a short tube from

@@ -159,6 +159,31 @@ TEST(Pipeline, SomaWithDendritesFromItsCentreHasItsSphereAtEveryScale) {
   }
 }
 
+// A soma merged into one patch with its trunk's joints, every branch leaving the patch under half its
+// width: the patch was the hull of those branches' squares, a slim blob through the soma's sphere (of the
+// points at 0.7 of its radius, 31 to 35 % inside the surface at levels 0 to 2). Its sphere's own points
+// now stand in the hull wherever the openings leave room.
+TEST(Pipeline, SomaMergedWithItsTrunksJointsShowsItsSphere) {
+  std::vector<Vec3> sphere;  // 200 directions spread evenly (a Fibonacci sphere)
+  for (int k = 0; k < 200; ++k) {
+    const double z = 1 - (k + 0.5) / 100, around = k * M_PI * (3 - std::sqrt(5.0));
+    sphere.push_back(
+        Vec3(std::sqrt(1 - z * z) * std::cos(around), std::sqrt(1 - z * z) * std::sin(around), z));
+  }
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = build_graph(fixtures::soma_merged_with_its_trunks_joints(scale));
+    std::vector<Vec3> points;
+    for (const Vec3& u : sphere) points.push_back(0.7 * 10 * scale * u);  // the soma: radius 10 at the origin
+    for (int levels = 0; levels <= 2; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const MeshResult r = mesh_at(g, levels);
+      expect_closed_and_uncrossed(r, g, what);
+      const std::vector<bool> inside = inside_surface(r.mesh, points);
+      EXPECT_GE(std::count(inside.begin(), inside.end(), true), 0.85 * points.size()) << what;
+    }
+  }
+}
+
 // Two dendrites leaving a soma 5° apart overlap for most of their length. Before squares could tilt, their
 // squares could not part, and the soma's joint merged with both their forks: one convex hull from the soma
 // to the forks, 32 % of the surface's area over half a radius off the tubes at level 2 (2.6 % once squares

@@ -174,6 +174,14 @@ std::pair<double, Vec3> missing_axis(const TriMesh& mesh, const RoundCones& cone
 
 }  // namespace
 
+std::vector<bool> inside_surface(const TriMesh& mesh, const std::vector<Vec3>& points) {
+  std::vector<bool> inside(points.size(), false);
+  if (mesh.faces.empty()) return inside;
+  const Bvh faces = face_hierarchy(mesh);
+  for (std::size_t i = 0; i < points.size(); ++i) inside[i] = inside_surface(faces, mesh, points[i]);
+  return inside;
+}
+
 TopologyReport check_topology(const TriMesh& mesh) {
   require_valid_indices(mesh);
   const std::vector<Tri>& faces = mesh.faces;

@@ -125,6 +125,10 @@ QualityReport triangle_quality(const TriMesh& mesh);
 /// at its ends (that of the nearest cone; edges with both ends at a cap left out), the longest edge.
 FidelityReport radius_fidelity(const TriMesh& mesh, const CenterlineGraph& centerline);
 
+/// Per point: whether it lies inside the closed surface `mesh` (the parity of the faces a ray from it
+/// passes through, along three directions, by majority).
+std::vector<bool> inside_surface(const TriMesh& mesh, const std::vector<Vec3>& points);
+
 /// How far one surface strays from another, relative to the vessel's size: the distance from each sample
 /// of `from` to the nearest point of `to`, divided by the local radius of the centerline (that of the
 /// nearest round cone). Samples: `from`'s vertices and its face centroids (the centroid shows the most a

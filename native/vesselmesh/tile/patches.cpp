@@ -2,7 +2,9 @@
 // and each patch closed as the convex hull of its squares with its openings cut out.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -14,6 +16,25 @@
 #include "vesselmesh/tile/tiler.hpp"
 
 namespace vesselmesh::tile_detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The corners of an octahedron, then of a cube: directions round a point for hull points on its sphere.
+const std::array<Vec3, 14> kSphereDirections = [] {
+  std::array<Vec3, 14> d;
+  for (int k = 0; k < 6; ++k) d[k] = (k % 2 ? -1.0 : 1.0) * Vec3::Unit(k / 2);
+  for (int k = 0; k < 8; ++k) d[6 + k] = Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1).normalized();
+  return d;
+}();
+
+/// `u` turned about a fixed axis by a different angle for each `turn` (the golden ratio's multiples), so
+/// that no four points on the spheres of neighbouring points are coplanar by accident.
+Vec3 turned(const Vec3& u, int turn) {
+  return rotate(u, Vec3(1, 2, 3).normalized(), 2 * M_PI * std::fmod(0.6180339887 * turn, 1.0));
+}
+
+}  // namespace
 
 void Tiler::collect_patches() {
   ends_.clear();
@@ -107,16 +128,56 @@ void Tiler::add_body(Patch& p) {
   if (openings >= 2) return;
   int turn = 0;
   auto octahedron = [&](const Vec3& at, double r) {
-    const double angle = 2 * M_PI * std::fmod(0.6180339887 * ++turn, 1.0);
-    const Vec3 axis = Vec3(1, 2, 3).normalized();
-    for (int k = 0; k < 3; ++k)
-      for (double side : {1.0, -1.0})
-        p.rim.push_back(at + side * scale() * r * rotate(Vec3::Unit(k), axis, angle));
+    ++turn;
+    for (int k = 0; k < 6; ++k) p.rim.push_back(at + scale() * r * turned(kSphereDirections[k], turn));
   };
   for (int32_t j : p.joints) octahedron(g_.points[j], g_.radius[j]);
   for (int32_t b : p.inside)
     for (std::size_t i = 1; i + 1 < curves_[b].points.size(); ++i)
       octahedron(curves_[b].points[i], curves_[b].radius[i]);
+}
+
+/// Points of the spheres round the patch's joints at least kFatterThanItsOpenings times as wide as its
+/// widest opening, at the small squares' reach, where the hull of `corners` (its squares and rim) misses
+/// them by over a tenth of their radius and where they lie behind every opening's plane (so that each
+/// opening stays a face of the hull). Such a joint is a soma or a bulb whose branches leave it thinner:
+/// neuron-hemibrain-da1's soma, radius 375, merged with its trunk's joints, had only its branches'
+/// squares (up to 173) in its hull, a slim patch through its sphere.
+std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const {
+  if (!p.rim.empty()) return {};  // a body covers its joints already; a tunnel's rim holds its hole
+  double widest_opening = 0;
+  for (int32_t i : p.ends)
+    if (kind_[ends_[i].branch] != Kind::stub)
+      widest_opening = std::max(widest_opening, ends_[i].square.radius);
+  std::vector<int32_t> fat;
+  for (int32_t j : p.joints)
+    if (g_.radius[j] >= kFatterThanItsOpenings * widest_opening) fat.push_back(j);
+  if (fat.empty()) return {};
+  const std::vector<Tri> hull = convex_hull(corners);
+  // How far q lies outside the hull (anywhere, where the points are coplanar and there is none).
+  auto outside = [&](const Vec3& q) {
+    double most = hull.empty() ? kInf : -kInf;
+    for (const Tri& t : hull) {
+      const Vec3 n = (corners[t[1]] - corners[t[0]]).cross(corners[t[2]] - corners[t[0]]);
+      if (n.norm() > 0) most = std::max(most, n.normalized().dot(q - corners[t[0]]));
+    }
+    return most;
+  };
+  std::vector<Vec3> points;
+  int turn = 0;
+  for (int32_t j : fat) {
+    const double r = g_.radius[j];
+    ++turn;
+    for (const Vec3& u : kSphereDirections) {
+      const Vec3 q = g_.points[j] + scale() * kSmallSquare * r * turned(u, turn);
+      const bool behind = std::all_of(p.ends.begin(), p.ends.end(), [&](int32_t i) {
+        const End& e = ends_[i];
+        return kind_[e.branch] == Kind::stub || (q - e.square.center).dot(e.square.normal) < -0.1 * r;
+      });
+      if (behind && outside(q) > 0.1 * r) points.push_back(q);
+    }
+  }
+  return points;
 }
 
 /// The patch's vertex ids for the square of end `e`, corners counter-clockwise about its normal.
@@ -175,6 +236,8 @@ bool Tiler::close_patch(const Patch& p) {
     for (int32_t i : p.ends)
       for (int k = 0; k < 4; ++k) corners.push_back(corner(ends_[i], k));
     corners.insert(corners.end(), p.rim.begin(), p.rim.end());
+    const std::vector<Vec3> spheres = uncovered_sphere_points(p, corners);
+    corners.insert(corners.end(), spheres.begin(), spheres.end());
     // Hull triangles inside one square are dropped: a tube's or shared square is an opening, and a
     // stub's square, when it is a face of the hull, gets two triangles of its own (an exactly planar
     // square would otherwise come back with both diagonals).
@@ -209,9 +272,9 @@ bool Tiler::close_patch(const Patch& p) {
       ends_[i].first_vertex = v[0];
       id.insert(id.end(), v.begin(), v.end());
     }
-    for (const Vec3& r : p.rim) {
+    for (std::size_t k = 4 * p.ends.size(); k < corners.size(); ++k) {
       id.push_back(static_cast<int32_t>(mesh_.vertices.size()));
-      mesh_.vertices.push_back(r);
+      mesh_.vertices.push_back(corners[k]);
       mesh_.axes.emplace_back();
     }
     for (const Tri& t : patch) mesh_.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});

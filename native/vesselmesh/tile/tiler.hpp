@@ -43,6 +43,11 @@ constexpr double kTiltFrom = 2;
 /// At 0.55 more random trees crossed (docs/pipeline.md, decisions log).
 constexpr double kSmallSquare = 0.7;
 
+/// A joint this many times as wide as the widest of its patch's openings bulges out of their hull (a soma,
+/// a bulb), and its sphere gets hull points (Tiler::uncovered_sphere_points). At 1.25, brava-bg0003's
+/// noisy radii (a joint of radius 0.93 whose branches leave at 0.62) gave a face 1.02 radii off the tubes.
+constexpr double kFatterThanItsOpenings = 2;
+
 /// A patch keeps full squares when one of its joints, or a point of one of its branches, lies within this
 /// many of its radii of a place where the surface crossed itself with small squares
 /// (TileOptions::full_squares_near).
@@ -205,6 +210,7 @@ class Tiler {
   void shrink_squares(const Patch& p);
   bool near_crossing(const Patch& p) const;
   void add_body(Patch& p);
+  std::vector<Vec3> uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const;
   std::array<int32_t, 4> square_vertices(const End& e);
   bool build_patch(const Patch& p);
   bool close_patch(const Patch& p);
