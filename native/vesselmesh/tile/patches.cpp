@@ -138,20 +138,25 @@ void Tiler::add_body(Patch& p) {
 }
 
 /// Points of the spheres round the patch's joints at least kFatterThanItsOpenings times as wide as its
-/// widest opening, at the small squares' reach, where the hull of `corners` (its squares and rim) misses
-/// them by over a tenth of their radius and where they lie behind every opening's plane (so that each
-/// opening stays a face of the hull). Such a joint is a soma or a bulb whose branches leave it thinner:
-/// neuron-hemibrain-da1's soma, radius 375, merged with its trunk's joints, had only its branches'
-/// squares (up to 173) in its hull, a slim patch through its sphere.
+/// widest opening and half as wide as its widest joint, at the small squares' reach, where the hull of
+/// `corners` (its squares and rim) misses them by over a tenth of their radius and where they lie behind
+/// every opening's plane (so that each opening stays a face of the hull). Such a joint is a soma or a bulb
+/// whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375, merged with its trunk's
+/// joints, had only its branches' squares (up to 173) in its hull, a slim patch through its sphere. (The
+/// trunk's joints of radius 100 in that patch, also over twice its widest opening, spread the hull over
+/// their thin side branches, where the fit folded it: a groove 5 radii long.)
 std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const {
   if (!p.rim.empty()) return {};  // a body covers its joints already; a tunnel's rim holds its hole
   double widest_opening = 0;
   for (int32_t i : p.ends)
     if (kind_[ends_[i].branch] != Kind::stub)
       widest_opening = std::max(widest_opening, ends_[i].square.radius);
+  double widest_joint = 0;
+  for (int32_t j : p.joints) widest_joint = std::max(widest_joint, g_.radius[j]);
   std::vector<int32_t> fat;
   for (int32_t j : p.joints)
-    if (g_.radius[j] >= kFatterThanItsOpenings * widest_opening) fat.push_back(j);
+    if (g_.radius[j] >= std::max(kFatterThanItsOpenings * widest_opening, 0.5 * widest_joint))
+      fat.push_back(j);
   if (fat.empty()) return {};
   const std::vector<Tri> hull = convex_hull(corners);
   // How far q lies outside the hull (anywhere, where the points are coplanar and there is none).
