@@ -161,8 +161,8 @@ TEST(Pipeline, SomaWithDendritesFromItsCentreHasItsSphereAtEveryScale) {
 
 // A soma merged into one patch with its trunk's joints, every branch leaving the patch under half its
 // width: the patch was the hull of those branches' squares, a slim blob through the soma's sphere (of the
-// points at 0.7 of its radius, 31 to 35 % inside the surface at levels 0 to 2). Its sphere's own points
-// now stand in the hull wherever the openings leave room.
+// points at 0.9 of its radius, 21 to 24 % inside the surface at levels 0 to 2). Its sphere's own points now
+// stand in the hull, and the fit brings them onto the sphere.
 TEST(Pipeline, SomaMergedWithItsTrunksJointsShowsItsSphere) {
   std::vector<Vec3> sphere;  // 200 directions spread evenly (a Fibonacci sphere)
   for (int k = 0; k < 200; ++k) {
@@ -173,13 +173,14 @@ TEST(Pipeline, SomaMergedWithItsTrunksJointsShowsItsSphere) {
   for (double scale : {1e-3, 1.0, 1e3}) {
     const CenterlineGraph g = build_graph(fixtures::soma_merged_with_its_trunks_joints(scale));
     std::vector<Vec3> points;
-    for (const Vec3& u : sphere) points.push_back(0.7 * 10 * scale * u);  // the soma: radius 10 at the origin
+    for (const Vec3& u : sphere) points.push_back(0.9 * 10 * scale * u);  // the soma: radius 10 at the origin
     for (int levels = 0; levels <= 2; ++levels) {
       const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
       const MeshResult r = mesh_at(g, levels);
       expect_closed_and_uncrossed(r, g, what);
       const std::vector<bool> inside = inside_surface(r.mesh, points);
-      EXPECT_GE(std::count(inside.begin(), inside.end(), true), 0.85 * points.size()) << what;
+      EXPECT_GE(std::count(inside.begin(), inside.end(), true), (levels == 0 ? 0.8 : 0.95) * points.size())
+          << what;
     }
   }
 }

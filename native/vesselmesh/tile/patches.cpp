@@ -138,7 +138,7 @@ void Tiler::add_body(Patch& p) {
 }
 
 /// Points of the spheres round the patch's joints at least kFatterThanItsOpenings times as wide as its
-/// widest opening and half as wide as its widest joint, at the small squares' reach, where the hull of
+/// widest opening and half as wide as its widest joint, at the corners' reach, where the hull of
 /// `corners` (its squares and rim) misses them by over a tenth of their radius and where they lie behind
 /// every opening's plane (so that each opening stays a face of the hull). Such a joint is a soma or a bulb
 /// whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375, merged with its trunk's
@@ -174,7 +174,7 @@ std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vect
     const double r = g_.radius[j];
     ++turn;
     for (const Vec3& u : kSphereDirections) {
-      const Vec3 q = g_.points[j] + scale() * kSmallSquare * r * turned(u, turn);
+      const Vec3 q = g_.points[j] + scale() * r * turned(u, turn);
       const bool behind = std::all_of(p.ends.begin(), p.ends.end(), [&](int32_t i) {
         const End& e = ends_[i];
         return kind_[e.branch] == Kind::stub || (q - e.square.center).dot(e.square.normal) < -0.1 * r;
