@@ -530,7 +530,7 @@ inline CenterlineData fat_trunk_with_a_side_branch_at_every_point(double scale) 
 /// neuron-hemibrain-da1's soma, cut out with the trunk it sits on and scaled by 1/37.5: one point of radius
 /// 10 at the origin, 6.1 from the trunk's joint of radius 6.2, the two merged into one patch with three
 /// more joints of radius 4 to 8 and terminals inside the soma; the branches leaving the patch are at most
-/// 4.6 wide where their squares stand. The soma's sphere is the widest part of the union.
+/// 4.6 in radius where their squares stand. The soma's sphere is the widest part of the union.
 inline CenterlineData soma_merged_with_its_trunks_joints(double scale) {
   CenterlineData d = start(scale * Vec3(14.0507, 9.848, 0.256), 2.4 * scale);
   const std::vector<std::tuple<Vec3, double, int32_t>> points = {

@@ -141,8 +141,9 @@ void Tiler::add_body(Patch& p) {
 /// widest opening and half as wide as its widest joint, at the corners' reach, where the hull of
 /// `corners` (its squares and rim) misses them by over a tenth of their radius and where they lie behind
 /// every opening's plane (so that each opening stays a face of the hull). Such a joint is a soma or a bulb
-/// whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375, merged with its trunk's
-/// joints, had only its branches' squares (up to 173) in its hull, a slim patch through its sphere. (The
+/// whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375, merged with nine of its
+/// trunk's joints, had only the squares of the branches leaving them (radius 71 at most) in its hull, a
+/// slim patch through its sphere. (The
 /// trunk's joints of radius 100 in that patch, also over twice its widest opening, spread the hull over
 /// their thin side branches, where the fit folded it: a groove 5 radii long.)
 std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const {
