@@ -434,6 +434,37 @@ inline CenterlineData u_bend_into_a_joint(double bend, double scale) {
   return d;
 }
 
+/// brava-records BH0026's thickest vessel (radius 2.74), cut out and scaled to radius 1 with the bottom of
+/// its U at the origin: it leaves a joint downwards, turns back within one point 2.7 radii below it (a
+/// sharp corner, tiled as a joint) and runs straight back up beside itself, the two legs' tubes touching;
+/// a thinner parent (0.41) and a second child (0.70) leave the joint upwards. The corner's patch is the
+/// hull of the two legs' squares, pushed up the legs until they clear each other: all of the U below them
+/// lies outside it.
+inline CenterlineData u_below_its_joint_with_touching_legs(double scale) {
+  CenterlineData d = start(scale * Vec3(0.1133, 1.2466, 3.8532), 0.406 * scale);
+  const std::vector<std::tuple<Vec3, double, int32_t>> points = {
+      // position, radius, parent
+      {{0.1133, 1.0200, 3.3999}, 0.4060, 0},    {{-0.6800, 1.4733, 2.7199}, 1.0000, 1},
+      {{-1.1333, 1.3600, 2.2666}, 1.0000, 2},   {{-1.1333, 1.0200, 1.8133}, 1.0000, 3},
+      {{-1.1333, 0.7933, 1.3600}, 1.0000, 4},   {{-0.7933, 0.9066, 0.9066}, 1.0000, 5},
+      {{-0.1133, 0.0000, 0.4533}, 1.0000, 6},   {{0.0000, 0.0000, 0.0000}, 1.0000, 7},
+      {{0.2157, -0.5813, 0.4533}, 1.0000, 8},   {{0.1133, -0.8006, 0.9066}, 1.0000, 9},
+      {{0.1133, -0.5813, 1.3600}, 1.0000, 10},  {{-0.2267, -0.8006, 1.8133}, 1.0000, 11},
+      {{-0.2267, -0.5813, 2.2666}, 1.0000, 12}, {{-0.2267, -0.8006, 2.7199}, 1.0000, 13},
+      {{-0.3400, -1.0200, 3.1733}, 1.0000, 14}, {{-0.6800, -1.1297, 3.6266}, 1.0000, 15},
+      {{-0.4533, -1.4587, 4.0799}, 1.0000, 16}, {{-0.4533, -1.7146, 4.5332}, 1.0000, 17},
+      {{-0.4533, -2.1533, 4.9866}, 1.0000, 18}, {{-0.1133, -2.8479, 5.4399}, 1.0000, 19},
+      {{-0.6800, 1.4733, 2.7199}, 0.7044, 1},   {{-0.1133, 2.0400, 2.9466}, 0.7044, 21},
+      {{0.2157, 2.2666, 2.7199}, 0.7044, 22},   {{0.8006, 2.6066, 2.9466}, 0.7044, 23},
+  };
+  for (const auto& [p, r, parent] : points) {
+    d.points.push_back(scale * p);
+    d.radius.push_back(r * scale);
+    d.edges.push_back({parent, static_cast<int32_t>(d.points.size()) - 1});
+  }
+  return d;
+}
+
 /// Two children that start from one point and run on side by side, as brava-records' tracings give
 /// them: a trunk of radius 0.6 along +z into the joint, then each child (radius 0.5) 4 out at ±10° from
 /// it and on along +z for 25, 1.4 apart (their tubes 0.4 apart), in points 1.25 apart. Facing along

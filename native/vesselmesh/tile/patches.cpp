@@ -137,15 +137,19 @@ void Tiler::add_body(Patch& p) {
       octahedron(curves_[b].points[i], curves_[b].radius[i]);
 }
 
-/// Points of the spheres round the patch's joints at least kFatterThanItsOpenings times as wide as its
-/// widest opening and half as wide as its widest joint, at the corners' reach, where the hull of
-/// `corners` (its squares and rim) misses them by over a tenth of their radius and where they lie behind
-/// every opening's plane (so that each opening stays a face of the hull). Such a joint is a soma or a bulb
-/// whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375, merged with nine of its
-/// trunk's joints, had only the squares of the branches leaving them (radius 71 at most) in its hull, a
-/// slim patch through its sphere. (The
-/// trunk's joints of radius 100 in that patch, also over twice its widest opening, spread the hull over
-/// their thin side branches, where the fit folded it: a groove 5 radii long.)
+/// Points of the spheres round a sharp corner that is its patch's only joint and round the patch's joints at
+/// least kFatterThanItsOpenings times as wide as its widest opening and half as wide as its widest joint, at
+/// the corners' reach, where the hull of `corners` (its squares and rim) misses them by over a tenth of their
+/// radius and where they lie behind every opening's plane (so that each opening stays a face of the hull). A
+/// corner's patch is the hull of its two legs' squares, pushed along the legs until they clear each other:
+/// where the legs run back side by side, all of the bend beyond the squares lay outside it (brava-records
+/// BH0026's thickest vessel lost the bottom of its U; the cohort's trees up to 23 radii of axis). (Corners
+/// merged with other joints too: more random trees crossed themselves, docs/pipeline.md's decisions log.) A
+/// fat joint is a soma or a bulb whose branches leave it thinner: neuron-hemibrain-da1's soma, radius 375,
+/// merged with nine of its trunk's joints, had only the squares of the branches leaving them (radius 71 at
+/// most) in its hull, a slim patch through its sphere. (The trunk's joints of radius 100 in that patch, also
+/// over twice its widest opening, spread the hull over their thin side branches, where the fit folded it: a
+/// groove 5 radii long.)
 std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const {
   if (!p.rim.empty()) return {};  // a body covers its joints already; a tunnel's rim holds its hole
   double widest_opening = 0;
@@ -154,11 +158,12 @@ std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vect
       widest_opening = std::max(widest_opening, ends_[i].square.radius);
   double widest_joint = 0;
   for (int32_t j : p.joints) widest_joint = std::max(widest_joint, g_.radius[j]);
-  std::vector<int32_t> fat;
+  std::vector<int32_t> round;
   for (int32_t j : p.joints)
-    if (g_.radius[j] >= std::max(kFatterThanItsOpenings * widest_opening, 0.5 * widest_joint))
-      fat.push_back(j);
-  if (fat.empty()) return {};
+    if ((corner_[j] && p.joints.size() == 1) ||
+        g_.radius[j] >= std::max(kFatterThanItsOpenings * widest_opening, 0.5 * widest_joint))
+      round.push_back(j);
+  if (round.empty()) return {};
   const std::vector<Tri> hull = convex_hull(corners);
   // How far q lies outside the hull (anywhere, where the points are coplanar and there is none).
   auto outside = [&](const Vec3& q) {
@@ -171,7 +176,7 @@ std::vector<Vec3> Tiler::uncovered_sphere_points(const Patch& p, const std::vect
   };
   std::vector<Vec3> points;
   int turn = 0;
-  for (int32_t j : fat) {
+  for (int32_t j : round) {
     const double r = g_.radius[j];
     ++turn;
     for (const Vec3& u : kSphereDirections) {
