@@ -65,6 +65,13 @@ def test_the_sidebar_offers_presets_regenerate_settings_teaching_render_export_a
     assert ("label", "Checked: closed, genus 0, no crossing") in stats  # the core's check of its own surface
 
 
+def test_the_statistics_name_a_loop_the_surface_closed_and_why(project_data, panels):
+    import_file(project_data / "extreme" / "fat_loop_round_a_thin_branch.vtk")
+    labels = [text for kind, text in draw(panels.VIEW3D_PT_vesselmesh_stats, bpy.context) if kind == "label"]
+    assert any(text.startswith("Loops closed inside a joint: 1, the first from (") for text in labels), labels
+    assert "    the joint patch's hull does not close round its hole" in labels
+
+
 def test_in_edit_mode_the_sidebar_offers_the_radius_tool(project_data, panels):
     centerline, _ = import_file(project_data / "bifurcation.swc")
     bpy.context.view_layer.objects.active = centerline

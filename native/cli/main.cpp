@@ -81,22 +81,37 @@ std::string point_text(const Vec3& p) {
   return text.str();
 }
 
-void print_check(const CheckReport& r, const std::string& file) {
+/// Which loops the surface closed and why (MeshResult::lost_loops), the first ten.
+void print_lost_loops(const std::vector<LostLoop>& loops) {
+  for (std::size_t i = 0; i < loops.size() && i < 10; ++i)
+    std::cerr << "  the loop through the branch from " << point_text(loops[i].ends[0]) << " to "
+              << point_text(loops[i].ends[1]) << " closed inside a joint patch: " << loops[i].why << "\n";
+  if (loops.size() > 10) std::cerr << "  and " << loops.size() - 10 << " more (--stats-json lists them)\n";
+}
+
+void print_check(const CheckReport& r, const std::string& file, const CenterlineGraph* graph) {
   const TopologyReport& t = r.topology;
   std::cout << file << "\n"
             << "  closed manifold      " << (t.closed_manifold() ? "yes" : "no") << " (" << t.boundary_edges
-            << " boundary edges, " << t.non_manifold_edges << " non-manifold edges, " << t.non_manifold_vertices
-            << " non-manifold vertices, " << t.inconsistent_edges << " inconsistently oriented edges, "
-            << t.degenerate_faces << " degenerate faces)\n"
+            << " boundary edges, " << t.non_manifold_edges << " non-manifold edges, "
+            << t.non_manifold_vertices << " non-manifold vertices, " << t.inconsistent_edges
+            << " inconsistently oriented edges, " << t.degenerate_faces << " degenerate faces)\n"
             << "  size                 " << t.vertices << " vertices, " << t.faces << " triangles\n"
             << "  components, genus    " << t.components << ", " << t.genus << " (Euler characteristic "
-            << t.euler_characteristic << ")\n"
-            << "  self-intersections   " << r.intersections.pairs << " triangle pairs ("
+            << t.euler_characteristic << ")\n";
+  if (graph && graph->loops != t.genus)
+    std::cout << "  loops                " << graph->loops << " in the centerline, genus " << t.genus
+              << (graph->loops > t.genus
+                      ? ": " + std::to_string(graph->loops - t.genus) +
+                            " closed (`vesselmesh mesh` names the loops it closes, and why)"
+                      : ": handles no loop goes round")
+              << "\n";
+  std::cout << "  self-intersections   " << r.intersections.pairs << " triangle pairs ("
             << r.intersections.pairs_in_overlapping_tubes << " where the input tubes overlap)\n"
             << "  radius ratio R/r     median " << r.quality.radius_ratio.median << ", max "
             << r.quality.radius_ratio.max << "\n"
-            << "  minimum angle        median " << r.quality.min_angle.median << ", min " << r.quality.min_angle.min
-            << " degrees\n";
+            << "  minimum angle        median " << r.quality.min_angle.median << ", min "
+            << r.quality.min_angle.min << " degrees\n";
   if (r.fidelity)
     std::cout << "  radius error         median " << 100 * r.fidelity->abs_relative_error.median
               << " %, 95th " << 100 * r.fidelity->abs_relative_error.p95 << " % of the local radius\n"
@@ -265,9 +280,12 @@ int main(int argc, char** argv) {
       if (v.problem().empty() && v.crossings_checked_near_joints)
         std::cerr << " (only there above a million triangles: --verify full, or vesselmesh check)";
       std::cerr << "\n";
-      if (v.problem().empty() && v.topology.genus != v.loops)
-        std::cerr << "note: the centerline has " << v.loops << " loops and the surface genus "
-                  << v.topology.genus << " (docs/pipeline.md, tile: where a loop closes)\n";
+      if (v.problem().empty() && v.topology.genus != v.loops) {
+        std::cerr << "note: the centerline has " << v.loops << (v.loops == 1 ? " loop" : " loops")
+                  << " and the surface genus " << v.topology.genus
+                  << " (docs/pipeline.md, tile: where a loop closes)\n";
+        print_lost_loops(result.lost_loops);
+      }
       if (result.hidden_terminals > 0)
         std::cerr << "note: " << result.hidden_terminals
                   << " terminal branches lie wholly inside other vessels' tubes and were left out: the vessel's "
@@ -294,7 +312,7 @@ int main(int argc, char** argv) {
       if (json)
         std::cout << report_json(report) << "\n";
       else
-        print_check(report, check_in);
+        print_check(report, check_in, graph ? &*graph : nullptr);
       // Status 2 when the surface is not a closed manifold or intersects itself where the tubes do not.
       const auto& x = report.intersections;
       return report.topology.closed_manifold() && x.pairs == x.pairs_in_overlapping_tubes ? 0 : 2;

@@ -291,10 +291,23 @@ TEST(ExtremeInputs, LoopWhoseSquaresStandAtItsBendsGivesAManifoldSurface) {
 // A loop of radius 4 fills its own hole at its joint, round a thin branch from that joint: the loop's
 // tunnel cannot close and is given up, the patch takes in the loop's body, and the thin branch, inside
 // that body, is decided again (a stub to its end) rather than kept as a tube whose square no longer
-// clears the patch.
+// clears the patch. The run says which loop closed, and why: by the joints of its branch through the
+// patch, (−3, 0, 0), a sharp corner of the loop, and (0, 0, 0).
 TEST(ExtremeInputs, LoopGivenUpAtItsJointLeavesASurfaceReachingWhatItTookIn) {
   const std::string file = extreme("fat_loop_round_a_thin_branch.vtk");
   const Meshed m = mesh_accepted(file);
+  ASSERT_EQ(m.result.lost_loops.size(), 1u);
+  const vesselmesh::LostLoop& loop = m.result.lost_loops[0];
+  EXPECT_EQ(loop.why, "the joint patch's hull does not close round its hole");
+  EXPECT_EQ(loop.ends[0], vesselmesh::Vec3(-3, 0, 0));
+  EXPECT_EQ(loop.ends[1], vesselmesh::Vec3::Zero());
+  const CliRun run = mesh(file);
+  EXPECT_TRUE(contains(run.output,
+                       "the loop through the branch from (-3, 0, 0) to (0, 0, 0) closed inside a "
+                       "joint patch: the joint patch's hull does not close round its hole"))
+      << run.output;
+  const CliRun check = run_cli("check '" + temp_path("out.ply") + "' --centerline '" + file + "'");
+  EXPECT_TRUE(contains(check.output, "1 in the centerline, genus 0: 1 closed")) << check.output;
   const auto [lo, hi] = bounds(m.result.mesh);
   // The thin branch's terminal (4, 4, −3), radius 1, within a quarter radius (a flat cap's rim rounds in).
   EXPECT_GE(hi.x(), 4 - 0.25);

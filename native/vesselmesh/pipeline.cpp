@@ -153,7 +153,7 @@ struct Tubes {
 /// What a build says of itself besides its surface and check.
 struct Built {
   std::vector<char> near_joints;  ///< faces_near_joints where only those were checked for crossings
-  std::vector<Vec3> lost_loops;   ///< where the tile stage gave a loop's tunnel up (BaseMesh::lost_loops)
+  std::vector<LostLoop> lost_loops;  ///< where the tile stage gave a loop's tunnel up (BaseMesh::lost_loops)
   std::vector<FacePair> crossing_pairs;  ///< where it crosses itself, as its check found
 };
 
@@ -279,6 +279,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
   for (int tries = 1;; ++tries) {
     const Built built =
         build_surface(tubes, tile, options, options.curvature ? &tube_curvature : nullptr, result);
+    result.lost_loops = built.lost_loops;
     if (!tile.small_squares) break;
     const Verification& v = result.verification;
     const bool checked = v.crossings_checked || v.crossings_checked_near_joints;
@@ -298,8 +299,7 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
       // round them, and whose tunnel then could not open.
       if (lost) {
         genus_lost_at = v.topology.genus;
-        tile.full_squares_near.insert(tile.full_squares_near.end(), built.lost_loops.begin(),
-                                      built.lost_loops.end());
+        for (const LostLoop& loop : built.lost_loops) tile.full_squares_near.push_back(loop.at);
       }
     }
     ++result.full_square_tries;
@@ -330,6 +330,12 @@ std::string stats_json(const MeshResult& result, int indent) {
   j["joint_patches"] = result.joint_patches;
   j["absorbed_branches"] = result.absorbed_branches;
   j["tunnels"] = result.tunnels;
+  j["lost_loops"] = nlohmann::ordered_json::array();
+  for (const LostLoop& loop : result.lost_loops)
+    j["lost_loops"].push_back({{"joints",
+                                {{loop.ends[0].x(), loop.ends[0].y(), loop.ends[0].z()},
+                                 {loop.ends[1].x(), loop.ends[1].y(), loop.ends[1].z()}}},
+                               {"why", loop.why}});
   j["crossings"] = result.crossings;
   j["hidden_terminals"] = result.hidden_terminals;
   j["separated_points"] = result.separated_points;

@@ -78,6 +78,7 @@ struct MeshResult {
   std::vector<double> tagged;       ///< per level: the fraction of triangles it tagged for splitting
   std::vector<StageStats> stages;
   int64_t sections = 0, joint_patches = 0, absorbed_branches = 0, tunnels = 0;
+  std::vector<LostLoop> lost_loops;  ///< the loops closed inside a joint patch: no handle goes round them
   int64_t hidden_terminals = 0;   ///< terminal branches dropped, hidden in other tubes (separate/hidden.hpp)
   int64_t crossings = 0;          ///< crossing edge pairs in the input (separate/separate.hpp)
   int64_t separated_points = 0;   ///< centerline points the separate stage moved

@@ -102,6 +102,11 @@ class VIEW3D_PT_vesselmesh_stats(VesselPanel, bpy.types.Panel):
                          # .get: the statistics of a surface made before the check near joints lack it
                          ", no crossing near its joints" if verified.get("crossings_checked_near_joints") else
                          ""))
+        lost = stats.get("lost_loops")
+        if lost:
+            ends = [", ".join(f"{c:.4g}" for c in joint) for joint in lost[0]["joints"]]
+            col.label(text=f"Loops closed inside a joint: {len(lost)}, the first from ({ends[0]}) to ({ends[1]}):")
+            col.label(text=f"    {lost[0]['why']}")
         if stats.get("hidden_terminals"):
             col.label(text=f"Twigs wholly inside other vessels left out: {stats['hidden_terminals']:,}")
         if stats.get("separated_points"):

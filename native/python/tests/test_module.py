@@ -126,6 +126,16 @@ def test_mesh_reports_its_own_check_of_the_surface(project_data):
     assert not unchecked["verified"]["crossings_checked_near_joints"] and not unchecked["small_squares"]
 
 
+def test_mesh_names_each_loop_it_closes_and_why(project_data):
+    graph = vm.Graph.read(str(project_data / "extreme" / "fat_loop_round_a_thin_branch.vtk"))
+    stats = vm.mesh(graph)["stats"]
+    assert stats["verified"]["genus"] == graph.loops - 1
+    assert stats["lost_loops"] == [{"joints": [[-3.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
+                                    "why": "the joint patch's hull does not close round its hole"}]
+    ring = vm.Graph.read(str(project_data / "ring_with_tail.vtk"))
+    assert vm.mesh(ring)["stats"]["lost_loops"] == []
+
+
 def test_edge_index_out_of_range_is_an_input_error():
     with pytest.raises(vm.InputError, match="edge 0: point index 5"):
         vm.Graph([[0, 0, 0], [1, 0, 0]], [[0, 5]], radius=[1, 1])

@@ -151,9 +151,11 @@ void Tiler::find_patches() {
           continue;
         }
         if (tunnel_[b].turns < kTurns && turn_tunnel(b, p, kept)) continue;
-        mesh_.lost_loops.push_back(g_.points[p.joints[0]]);
-        kind_[b] = Kind::swallowed;
-        --mesh_.tunnels;
+        give_up_loop(p, b,
+                     met != kept.end()
+                         ? "its hole through the joint patch would meet another loop's there"
+                         : "its tubes overlap, and no hole through the joint patch opens within "
+                           "four of the loop's radii");
       }
     }
     if (changed || decide_kinds(false) || decide_kinds(true)) continue;

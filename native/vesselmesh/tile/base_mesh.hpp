@@ -72,6 +72,14 @@ void drop_tube_axis_properties(TriMesh& mesh, std::size_t from = 0);
 std::array<const std::vector<float>*, kTubeAxisNames.size()> find_tube_axis_properties(
     const TriMesh& mesh, std::size_t count = kTubeAxisNames.size());
 
+/// A loop of the centerline that the tile stage closed inside one joint patch: no handle of the surface
+/// goes round it.
+struct LostLoop {
+  Vec3 at;                   ///< a joint of the patch
+  std::array<Vec3, 2> ends;  ///< the joints of the loop's branch through the patch (its tunnel's)
+  std::string why;           ///< in words, for reports
+};
+
 struct BaseMesh {
   std::vector<Vec3> vertices;
   std::vector<TubeAxis> axes;                 ///< one per vertex
@@ -82,7 +90,7 @@ struct BaseMesh {
   int64_t joints = 0;                         ///< joint patches (clusters of joints too close to part)
   int64_t absorbed_branches = 0;              ///< branches too short for a tube, inside a joint patch
   int64_t tunnels = 0;                        ///< of those, loops closed inside a patch, through it
-  std::vector<Vec3> lost_loops;               ///< a joint of each patch that gave a loop's tunnel up
+  std::vector<LostLoop> lost_loops;           ///< the loops whose tunnels the patches gave up
 };
 
 BaseMesh tile_base_mesh(const CenterlineGraph& graph, const TileOptions& options);

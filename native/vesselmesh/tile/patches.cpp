@@ -208,6 +208,14 @@ std::array<int32_t, 4> Tiler::square_vertices(const End& e) {
   return {first, first + 3, first + 2, first + 1};
 }
 
+/// Gives up the loop of `tunnel`, a branch of patch `p`: it is swallowed, and the loop closes in the patch.
+void Tiler::give_up_loop(const Patch& p, int32_t tunnel, const std::string& why) {
+  mesh_.lost_loops.push_back(
+      {g_.points[p.joints[0]], {g_.points[first_point(tunnel)], g_.points[last_point(tunnel)]}, why});
+  kind_[tunnel] = Kind::swallowed;
+  --mesh_.tunnels;
+}
+
 /// Closes the patch. Where its hull cannot close, a tunnel's loop is given up (its branch is
 /// swallowed), or failing one, the tube whose square was pushed furthest in its radii (the two legs of
 /// a hairpin that run on side by side, their squares abreast, each just clear of the other's plane);
@@ -217,9 +225,7 @@ bool Tiler::build_patch(const Patch& p) {
   const auto tunnel = std::find_if(p.ends.begin(), p.ends.end(),
                                    [&](int32_t i) { return kind_[ends_[i].branch] == Kind::tunnel; });
   if (tunnel != p.ends.end()) {
-    mesh_.lost_loops.push_back(g_.points[p.joints[0]]);
-    kind_[ends_[*tunnel].branch] = Kind::swallowed;
-    --mesh_.tunnels;
+    give_up_loop(p, ends_[*tunnel].branch, "the joint patch's hull does not close round its hole");
     return false;
   }
   int32_t furthest = -1;

@@ -211,6 +211,7 @@ class Tiler {
   bool near_crossing(const Patch& p) const;
   void add_body(Patch& p);
   std::vector<Vec3> uncovered_sphere_points(const Patch& p, const std::vector<Vec3>& corners) const;
+  void give_up_loop(const Patch& p, int32_t tunnel, const std::string& why);
   std::array<int32_t, 4> square_vertices(const End& e);
   bool build_patch(const Patch& p);
   bool close_patch(const Patch& p);
