@@ -280,7 +280,7 @@ int main(int argc, char** argv) {
       if (v.problem().empty() && v.crossings_checked_near_joints)
         std::cerr << " (only there above a million triangles: --verify full, or vesselmesh check)";
       std::cerr << "\n";
-      if (v.problem().empty() && v.topology.genus != v.loops) {
+      if (v.topology.closed_manifold() && v.topology.genus != v.loops) {
         std::cerr << "note: the centerline has " << v.loops << (v.loops == 1 ? " loop" : " loops")
                   << " and the surface genus " << v.topology.genus
                   << " (docs/pipeline.md, tile: where a loop closes)\n";
