@@ -99,6 +99,26 @@ void expect_on_its_tubes_at_every_scale(const std::function<CenterlineData(doubl
   }
 }
 
+/// The graph of centerline `file` with its points and radii times `scale`.
+CenterlineGraph scaled_graph(CenterlineData file, double scale) {
+  for (Vec3& p : file.points) p *= scale;
+  for (double& r : file.radius) r *= scale;
+  for (double& r : file.edge_radius) r *= scale;
+  return build_graph(file);
+}
+
+/// Closed with its genus and uncrossed at levels 0 to 3, the test data file `name` at three scales.
+void expect_closed_and_uncrossed_at_every_scale(const std::string& name) {
+  const CenterlineData file = read_centerline(test::test_data(name));
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = scaled_graph(file, scale);
+    for (int levels = 0; levels <= 3; ++levels)
+      expect_closed_and_uncrossed(
+          mesh_at(g, levels), g,
+          name + " scale " + std::to_string(scale) + " level " + std::to_string(levels));
+  }
+}
+
 /// Radius fidelity of the uniform level-2 surface (the base-mesh issue's surface) of a shared set.
 FidelityReport uniform_level_two_fidelity(const std::string& path) {
   const CenterlineGraph g = build_graph(read_centerline(path));
@@ -333,10 +353,7 @@ TEST(Pipeline, PatchesWhoseSmallSquaresCrossAreBuiltAgainWithFullSquares) {
 TEST(Pipeline, ALoopTheTileStageGaveUpWithSmallSquaresIsKeptWithFullSquaresThereOnly) {
   const CenterlineData file = read_centerline(test::test_data("loop_lost_with_small_squares_vertices.csv"));
   for (double scale : {1e-3, 1.0, 1e3}) {
-    CenterlineData d = file;
-    for (Vec3& p : d.points) p *= scale;
-    for (double& r : d.edge_radius) r *= scale;
-    const CenterlineGraph g = build_graph(d);
+    const CenterlineGraph g = scaled_graph(file, scale);
     ASSERT_EQ(g.loops, 1);
     for (int levels = 0; levels <= 2; ++levels) {
       const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
@@ -468,6 +485,35 @@ TEST(Pipeline, StaircaseOfAVoxelCenterlineTakesNoSectionOnItsCorners) {
       on_points += std::binary_search(curve.arc.begin(), curve.arc.end(), arcs[i]);
     EXPECT_EQ(on_points, 0) << "scale " << scale;
     EXPECT_EQ(find_self_intersections(mesh_at(g, 2).mesh, &g).pairs, 0) << "scale " << scale;
+  }
+}
+
+// A fork of brava-bg0003 traced through voxels of one median radius, beside a loop: a long joint-patch
+// edge's new vertex, moved onto the tubes, turned one of its triangles over, and the surface crossed itself
+// at every level (3, 4 and 16 pairs at levels 0 to 2). Such a vertex stays at the edge's middle.
+TEST(Pipeline, VoxelForkBesideALoopIsUncrossedWhereItsPatchEdgesAreSplit) {
+  expect_closed_and_uncrossed_at_every_scale("voxel_loop_beside_a_fork.vtk");
+}
+
+// A loop of five voxels of that tracing, its tubes filling its hole: its tunnel ran close under the patch's
+// side, which the Loop limit folded through it at level 0 (7 pairs), with full squares too. Where the surface
+// still crosses itself round a tunnel, the loop is closed, and the run names it.
+TEST(Pipeline, VoxelLoopWhoseHoleCrossesItsPatchIsClosedAndNamed) {
+  const CenterlineData file = read_centerline(test::test_data("voxel_loop_of_five_voxels.vtk"));
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const CenterlineGraph g = scaled_graph(file, scale);
+    ASSERT_EQ(g.loops, 1);
+    for (int levels = 0; levels <= 3; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const MeshResult r = mesh_at(g, levels);
+      const TopologyReport t = check_topology(r.mesh);
+      EXPECT_TRUE(t.closed_manifold()) << what;
+      EXPECT_EQ(find_self_intersections(r.mesh, &g).pairs, 0) << what;
+      EXPECT_EQ(t.genus + static_cast<int64_t>(r.lost_loops.size()), 1) << what;
+      for (const LostLoop& loop : r.lost_loops)
+        EXPECT_EQ(loop.why, "the surface crossed itself round its hole through the joint patch") << what;
+      if (scale == 1.0 && levels == 0) EXPECT_EQ(r.lost_loops.size(), 1u);
+    }
   }
 }
 

@@ -290,6 +290,11 @@ MeshResult mesh_centerline(const CenterlineGraph& graph, const MeshOptions& opti
       // still lost with full squares there, or crossings that full squares round them did not part: small
       // squares only on patches along a vessel, as where the surface is never checked.
       tile.small_squares = false;
+      // Where it still crosses itself round a tunnel (whose patch has full squares anyway), its loop is
+      // closed: a loop of five voxels, its tubes filling its hole, crossed itself so (tile step 4).
+      if (checked && crosses(v))
+        for (const auto& pair : built.crossing_pairs)
+          for (int32_t f : pair) tile.loops_closed_near.push_back(centroid(result.mesh, f));
     } else {
       if (!crosses(v) && !lost) break;
       if (crosses(v))

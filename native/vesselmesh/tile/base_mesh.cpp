@@ -136,6 +136,11 @@ void Tiler::find_patches() {
       for (int32_t i : p.ends) {
         const int32_t b = ends_[i].branch;
         if (kind_[b] != Kind::tunnel || !ends_[i].at_start) continue;
+        if (hole_crossed(b)) {
+          changed = true;
+          give_up_loop(p, b, "the surface crossed itself round its hole through the joint patch");
+          continue;
+        }
         const auto met =  // a kept tunnel whose mouths this one's come close to
             std::find_if(kept.begin(), kept.end(), [&](int32_t other) { return mouths_meet(b, other); });
         if (met == kept.end() && !ends_[head_[b]].stuck && !ends_[tail_[b]].stuck) {

@@ -36,6 +36,9 @@ struct TileOptions {
   /// `full_squares_near`: where a surface with small squares crossed itself or lost a loop (pipeline.cpp).
   bool small_squares = false;
   std::vector<Vec3> full_squares_near;
+  /// Places where the surface crossed itself with full squares round them too: a tunnel whose hole passes
+  /// within tile_detail::kNearCrossing of its loop's radii of one gives its loop up (pipeline.cpp).
+  std::vector<Vec3> loops_closed_near;
 };
 
 /// Where a base vertex's tube is round: the axis point of its section, the radius the surface should have

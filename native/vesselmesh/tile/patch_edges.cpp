@@ -14,6 +14,20 @@ constexpr double kLongest = 4.0;   ///< local radii: longer edges span merged jo
 constexpr double kMostMove = 0.2;  ///< of the edge's length: the furthest a new vertex leaves its middle
 constexpr int kRounds = 2;         ///< four: vmtk-aorta-centerline at uniform level 2 worse (decisions log)
 
+/// Whether a vertex at `at` splitting faces `t` and `u` at their common side (t's side `k`, u's side `j`)
+/// turns none of the four triangles over: facing against the face it splits, it folds the patch (a voxel
+/// tracing's fork crossed itself so at every level).
+bool turns_none_over(const BaseMesh& base, const Tri& t, int k, const Tri& u, int j, const Vec3& at) {
+  const auto normal = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); };
+  for (const auto& [f, s] : {std::pair<const Tri&, int>{t, k}, std::pair<const Tri&, int>{u, j}}) {
+    const Vec3 &a = base.vertices[f[s]], &b = base.vertices[f[(s + 1) % 3]],
+               &c = base.vertices[f[(s + 2) % 3]];
+    const Vec3 n = normal(a, b, c);
+    if (!(n.dot(normal(a, at, c)) > 0 && n.dot(normal(at, b, c)) > 0)) return false;
+  }
+  return true;
+}
+
 /// One round of the bisection.
 void split_round(BaseMesh& base, const RoundCones& cones, double scale) {
   const auto length = [&](int32_t a, int32_t b) { return (base.vertices[a] - base.vertices[b]).norm(); };
@@ -63,7 +77,9 @@ void split_round(BaseMesh& base, const RoundCones& cones, double scale) {
       const ConeDistance d = cones.nearest(at, &hint);
       if (std::isfinite(d.distance)) {
         const Vec3 on = at + ((scale - 1) * d.radius - d.distance) * d.direction;
-        if ((on - at).norm() <= kMostMove * l) at = on;
+        if ((on - at).norm() <= kMostMove * l &&
+            turns_none_over(base, t, k, base.triangles[other / 3], other % 3, on))
+          at = on;
       }
       TubeAxis axis;
       axis.radius = (A.radius + B.radius) / 2;

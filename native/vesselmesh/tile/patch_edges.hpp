@@ -10,8 +10,9 @@
 // span clusters of merged joints, where the tubes' surface is not near the chord's middle). The new vertex
 // goes to the nearest point of the tubes, pushed out as a tube section's corners are (`scale`), only where
 // that lies within a fifth of the edge's length of its middle: further moves, into a crotch or out to another
-// vessel, folded the patch into its neighbours (brava-records trees crossed themselves); elsewhere it stays
-// at the middle.
+// vessel, folded the patch into its neighbours (brava-records trees crossed themselves), and only where it
+// turns none of the four triangles over (a fork of brava-bg0003 traced through voxels crossed itself so);
+// elsewhere it stays at the middle.
 
 #include "vesselmesh/geometry/round_cones.hpp"
 #include "vesselmesh/tile/base_mesh.hpp"

@@ -221,6 +221,7 @@ class Tiler {
   // tunnels.cpp: loops closed inside a patch, through it.
   bool turn_tunnel(int32_t b, const Patch& p, const std::vector<int32_t>& kept);
   bool mouths_meet(int32_t a, int32_t b) const;
+  bool hole_crossed(int32_t b) const;
   void find_tunnel_holes();
   void build_tunnel(int32_t b);
 

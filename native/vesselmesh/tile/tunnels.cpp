@@ -63,6 +63,16 @@ bool Tiler::turn_tunnel(int32_t b, const Patch& p, const std::vector<int32_t>& k
   return h.turned;
 }
 
+/// Whether tunnel b's hole, from its head's mouth to its tail's, passes within kNearCrossing of its loop's
+/// radii of a place in TileOptions::loops_closed_near.
+bool Tiler::hole_crossed(int32_t b) const {
+  const Vec3 &head = ends_[head_[b]].square.center, &tail = ends_[tail_[b]].square.center;
+  return std::any_of(opt_.loops_closed_near.begin(), opt_.loops_closed_near.end(), [&](const Vec3& at) {
+    const double t = closest_parameters(head, tail, at, at).first;
+    return (head + t * (tail - head) - at).norm() <= kNearCrossing * tunnel_[b].radius;
+  });
+}
+
 /// Whether a mouth of tunnel a comes within twice the corners' reach of a mouth of tunnel b, so that
 /// the hull would leave no wall between the two holes.
 bool Tiler::mouths_meet(int32_t a, int32_t b) const {
