@@ -15,9 +15,11 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "vesselmesh/check/check_mesh.hpp"
+#include "vesselmesh/error.hpp"
 #include "vesselmesh/graph/centerline_graph.hpp"
 #include "vesselmesh/mesh/mesh_files.hpp"
 #include "vesselmesh/option_names.hpp"
@@ -31,6 +33,35 @@ using namespace vesselmesh;
 
 namespace {
 
+std::string lost_loop_text(const LostLoop& loop);
+
+/// What `info` says of the loops a quick build closes (loops_a_quick_build_closes).
+std::string loops_text(const std::optional<std::vector<LostLoop>>& closed, int64_t loops) {
+  if (loops == 0) return "";
+  if (!closed) return " (too many for a quick build: `vesselmesh mesh` names the loops it closes)";
+  if (closed->empty()) return " (a level-0 build keeps each as a handle)";
+  std::string text = " (a level-0 build closes " + std::to_string(closed->size()) + ":";
+  for (const LostLoop& loop : *closed) text += "\n              " + lost_loop_text(loop);
+  return text + ")";
+}
+
+/// The loops a quick build of `g` (level 0, otherwise the default settings) closes, and why: a loop whose
+/// tubes fill its hole may close inside a joint patch (docs/pipeline.md, tile step 4). None without loops;
+/// nullopt where the centerline has over 100,000 points or the build would be over a million triangles (a
+/// second or two on two cores).
+std::optional<std::vector<LostLoop>> loops_a_quick_build_closes(const CenterlineGraph& g) {
+  if (g.loops == 0) return std::vector<LostLoop>();
+  if (g.points.size() > 100'000) return std::nullopt;
+  MeshOptions quick;
+  quick.subdivision.levels = 0;
+  quick.max_triangles = 1'000'000;
+  try {
+    return mesh_centerline(g, quick).lost_loops;
+  } catch (const SizeLimitError&) {
+    return std::nullopt;
+  }
+}
+
 void print_info(const CenterlineGraph& g, const std::string& file) {
   const auto j = nlohmann::json::parse(summary_json(g));
   const auto& n = j["normalisation"];
@@ -41,15 +72,15 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
             << "  branches    " << j["branches"] << "\n"
             << "  joints      " << j["joints"] << " (max degree " << j["max_degree"] << ")\n"
             << "  terminals   " << j["terminals"] << "\n"
-            << "  loops       " << j["loops"] << "\n"
+            << "  loops       " << j["loops"] << loops_text(loops_a_quick_build_closes(g), g.loops) << "\n"
             << "  radius      " << j["radius"]["min"] << " .. " << j["radius"]["max"] << " (per "
             << j["radius"]["per"].get<std::string>() << ")\n"
             << "  bbox        " << j["bbox"]["min"].dump() << " .. " << j["bbox"]["max"].dump() << "\n"
-            << "  normalised  " << n["input_points"] << " points, " << n["input_edges"] << " edges read; merged "
-            << n["merged_points"] << " coincident points, dropped " << n["zero_length_edges"]
-            << " zero-length edges, merged " << n["duplicate_edges"] << " duplicate edges, dropped "
-            << n["isolated_points"] << " isolated points, set " << n["snapped_coordinates"]
-            << " coordinates next to zero to zero\n";
+            << "  normalised  " << n["input_points"] << " points, " << n["input_edges"]
+            << " edges read; merged " << n["merged_points"] << " coincident points, dropped "
+            << n["zero_length_edges"] << " zero-length edges, merged " << n["duplicate_edges"]
+            << " duplicate edges, dropped " << n["isolated_points"] << " isolated points, set "
+            << n["snapped_coordinates"] << " coordinates next to zero to zero\n";
   // Where the input's tubes overlap, the surface cannot follow both without crossing itself, pressing
   // them flat against each other or moving them apart: worth knowing before meshing.
   const auto& overlaps = j["overlaps"];
@@ -81,15 +112,25 @@ std::string point_text(const Vec3& p) {
   return text.str();
 }
 
+/// A loop the surface closed, and why, in words (MeshResult::lost_loops).
+std::string lost_loop_text(const LostLoop& loop) {
+  return "the loop through the branch from " + point_text(loop.ends[0]) + " to " + point_text(loop.ends[1]) +
+         " closed inside a joint patch: " + loop.why;
+}
+
+/// The mark of a lost loop's line in a surface file's comments, for `vesselmesh check` to name it.
+constexpr std::string_view kLostLoopComment = "lost loop: ";
+
 /// Which loops the surface closed and why (MeshResult::lost_loops), the first ten.
 void print_lost_loops(const std::vector<LostLoop>& loops) {
   for (std::size_t i = 0; i < loops.size() && i < 10; ++i)
-    std::cerr << "  the loop through the branch from " << point_text(loops[i].ends[0]) << " to "
-              << point_text(loops[i].ends[1]) << " closed inside a joint patch: " << loops[i].why << "\n";
+    std::cerr << "  " << lost_loop_text(loops[i]) << "\n";
   if (loops.size() > 10) std::cerr << "  and " << loops.size() - 10 << " more (--stats-json lists them)\n";
 }
 
-void print_check(const CheckReport& r, const std::string& file, const CenterlineGraph* graph) {
+/// `closed`: the loops the file says the surface closed (its lost-loop comments), in words.
+void print_check(const CheckReport& r, const std::string& file, const CenterlineGraph* graph,
+                 const std::vector<std::string>& closed) {
   const TopologyReport& t = r.topology;
   std::cout << file << "\n"
             << "  closed manifold      " << (t.closed_manifold() ? "yes" : "no") << " (" << t.boundary_edges
@@ -103,9 +144,12 @@ void print_check(const CheckReport& r, const std::string& file, const Centerline
     std::cout << "  loops                " << graph->loops << " in the centerline, genus " << t.genus
               << (graph->loops > t.genus
                       ? ": " + std::to_string(graph->loops - t.genus) +
-                            " closed (`vesselmesh mesh` names the loops it closes, and why)"
+                            (closed.empty() ? " closed (`vesselmesh mesh` names the loops it closes, and why)"
+                                            : " closed, as the file says:")
                       : ": handles no loop goes round")
               << "\n";
+  if (graph && graph->loops > t.genus)
+    for (const std::string& loop : closed) std::cout << "                       " << loop << "\n";
   std::cout << "  self-intersections   " << r.intersections.pairs << " triangle pairs ("
             << r.intersections.pairs_in_overlapping_tubes << " where the input tubes overlap)\n"
             << "  radius ratio R/r     median " << r.quality.radius_ratio.median << ", max "
@@ -243,10 +287,17 @@ int main(int argc, char** argv) {
       ReadOptions options;
       options.radius_array = radius_array;
       const CenterlineGraph graph = build_graph(read_centerline(info_file, options), info_file);
-      if (json)
-        std::cout << summary_json(graph) << "\n";
-      else
+      if (json) {
+        nlohmann::ordered_json j = nlohmann::ordered_json::parse(summary_json(graph));
+        const auto closed = loops_a_quick_build_closes(graph);
+        if (graph.loops > 0 && closed) {
+          j["loops_closed_at_level_0"] = nlohmann::ordered_json::array();
+          for (const LostLoop& loop : *closed) j["loops_closed_at_level_0"].push_back(lost_loop_text(loop));
+        }
+        std::cout << j.dump(2) << "\n";
+      } else {
         print_info(graph, info_file);
+      }
     } else if (*synth) {
       const auto start = std::chrono::steady_clock::now();
       const CenterlineData data = synthesize_network(synth_options);
@@ -259,7 +310,10 @@ int main(int argc, char** argv) {
       options.radius_array = radius_array;
       const CenterlineGraph graph = build_graph(read_centerline(mesh_in, options), mesh_in);
       const MeshResult result = mesh_centerline(graph, mesh_options);
-      write_mesh(result.mesh, mesh_out);
+      WriteOptions written;
+      for (const LostLoop& loop : result.lost_loops)
+        written.comments.push_back(std::string(kLostLoopComment) + lost_loop_text(loop));
+      write_mesh(result.mesh, mesh_out, written);
       if (!centerline_out.empty())
         write_centerline_vtk(centerline_data(result.separated ? *result.separated : graph), centerline_out, false);
       const Verification& v = result.verification;
@@ -309,10 +363,18 @@ int main(int argc, char** argv) {
       std::optional<CenterlineGraph> graph;
       if (!check_centerline.empty()) graph = build_graph(read_centerline(check_centerline), check_centerline);
       const CheckReport report = check_mesh(surface, graph ? &*graph : nullptr);
-      if (json)
+      std::vector<std::string> closed;  // the loops the file says the surface closed
+      for (const std::string& line : read_mesh_comments(check_in))
+        if (line.rfind(kLostLoopComment, 0) == 0) closed.push_back(line.substr(kLostLoopComment.size()));
+      if (json && closed.empty()) {
         std::cout << report_json(report) << "\n";
-      else
-        print_check(report, check_in, graph ? &*graph : nullptr);
+      } else if (json) {
+        nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(report));
+        j["closed_loops"] = closed;
+        std::cout << j.dump(2) << "\n";
+      } else {
+        print_check(report, check_in, graph ? &*graph : nullptr, closed);
+      }
       // Status 2 when the surface is not a closed manifold or intersects itself where the tubes do not.
       const auto& x = report.intersections;
       return report.topology.closed_manifold() && x.pairs == x.pairs_in_overlapping_tubes ? 0 : 2;

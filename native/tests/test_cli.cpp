@@ -122,6 +122,24 @@ TEST(Cli, InfoTellsWhereTheInputTubesOverlap) {
   EXPECT_TRUE(info_json(vesselmesh::test::test_data("ring_with_tail.vtk"))["overlaps"].empty());
 }
 
+TEST(Cli, InfoSaysWhichLoopsAQuickBuildClosesAndWhy) {
+  const std::string fat = vesselmesh::test::test_data("extreme/fat_loop_round_a_thin_branch.vtk");
+  const CliRun run = run_cli("info '" + fat + "'");
+  EXPECT_NE(
+      run.output.find("loops       1 (a level-0 build closes 1:\n              the loop through the branch "
+                      "from (-3, 0, 0) to (0, 0, 0) closed inside a joint patch: the joint patch's hull "
+                      "does not close round its hole)"),
+      std::string::npos)
+      << run.output;
+  EXPECT_EQ(info_json(fat)["loops_closed_at_level_0"].size(), 1u);
+  const std::string ring = vesselmesh::test::test_data("ring_with_tail.vtk");
+  EXPECT_NE(
+      run_cli("info '" + ring + "'").output.find("loops       1 (a level-0 build keeps each as a handle)"),
+      std::string::npos);
+  EXPECT_TRUE(info_json(ring)["loops_closed_at_level_0"].empty());
+  EXPECT_FALSE(info_json(vesselmesh::test::test_data("bifurcation.swc")).contains("loops_closed_at_level_0"));
+}
+
 TEST(Cli, MalformedInputExitsNonZeroWithTheFileAndLine) {
   const std::string path = vesselmesh::test::temp_path("truncated.swc");
   std::ofstream(path) << "1 1 0 0 0 1 -1\n2 1 0 0 1\n";

@@ -280,6 +280,22 @@ TEST_F(MeshFiles, PlyVertexPropertiesRoundTripByNameAndValue) {
   EXPECT_EQ(read.faces, mesh.faces);
 }
 
+TEST_F(MeshFiles, CommentsRoundTripInPlyAndObjOneLineEachAndStlHasNone) {
+  WriteOptions options;
+  options.comments = {"lost loop: the branch from (0, 0, 1) to (1, 0, 0)", "two\nlines"};
+  for (const std::string name : {"mesh.ply", "mesh.obj", "mesh.PLY"}) {
+    write_mesh(octahedron(), path(name), options);
+    EXPECT_EQ(read_mesh_comments(path(name)),
+              (std::vector<std::string>{"lost loop: the branch from (0, 0, 1) to (1, 0, 0)", "two lines"}))
+        << name;
+    EXPECT_EQ(read_mesh(path(name)).faces, octahedron().faces) << name;
+  }
+  write_mesh(octahedron(), path("mesh.stl"), options);
+  EXPECT_TRUE(read_mesh_comments(path("mesh.stl")).empty());
+  write_mesh(octahedron(), path("plain.ply"));
+  EXPECT_TRUE(read_mesh_comments(path("plain.ply")).empty());
+}
+
 TEST_F(MeshFiles, WriterIsChosenByTheLowerCaseExtension) {
   write_mesh(cube(), path("CUBE.PLY"));
   EXPECT_EQ(read_bytes(path("CUBE.PLY")).substr(0, 4), "ply\n");

@@ -1,5 +1,6 @@
 #include "vesselmesh/mesh/mesh_files.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -88,6 +89,17 @@ void check_writable(const TriMesh& mesh, const std::string& path, const WriteOpt
                                  std::to_string(vertex_count) + " vertices");
 }
 
+/// `comments` as lines of a file's header, each after `prefix`, line breaks as spaces.
+std::string comment_lines(const std::vector<std::string>& comments, const std::string& prefix) {
+  std::string lines;
+  for (std::string c : comments) {
+    std::replace_if(
+        c.begin(), c.end(), [](char x) { return x == '\n' || x == '\r'; }, ' ');
+    lines += prefix + c + "\n";
+  }
+  return lines;
+}
+
 void write_ply(const TriMesh& mesh, const std::string& path, const WriteOptions& options) {
   for (const VertexProperty& property : mesh.vertex_properties)
     if (property.name.empty() || property.name.find_first_of(" \t\r\n") != std::string::npos)
@@ -100,7 +112,8 @@ void write_ply(const TriMesh& mesh, const std::string& path, const WriteOptions&
   const bool colors = !options.colors.empty();
   const int channels = colors ? (options.alpha ? 4 : 3) : 0;
   BufferedFile out(path);
-  std::string header = "ply\nformat binary_little_endian 1.0\ncomment VesselMesh\nelement vertex " +
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment VesselMesh\n" +
+                       comment_lines(options.comments, "comment ") + "element vertex " +
                        std::to_string(mesh.vertices.size()) + "\n";
   for (const char* axis : {"x", "y", "z"}) header += "property " + coordinate + " " + axis + "\n";
   for (int c = 0; c < channels; ++c)
@@ -139,7 +152,7 @@ void write_obj(const TriMesh& mesh, const std::string& path, const WriteOptions&
     throw std::runtime_error("cannot write '" + path + "': material name '" + options.material +
                              "' holds whitespace, which OBJ cannot");
   BufferedFile out(path);
-  out.text("# VesselMesh\n");
+  out.text("# VesselMesh\n" + comment_lines(options.comments, "# "));
   if (!options.material.empty()) {
     const std::filesystem::path library = std::filesystem::path(path).replace_extension(".mtl");
     write_mtl(library.string(), options.material);
@@ -887,6 +900,21 @@ void write_mesh(const TriMesh& mesh, const std::string& path, const WriteOptions
   } else {
     write_stl(mesh, path);
   }
+}
+
+std::vector<std::string> read_mesh_comments(const std::string& path) {
+  const std::string extension = extension_of(path);
+  std::vector<std::string> comments;
+  if (extension != ".ply" && extension != ".obj") return comments;
+  const std::string prefix = extension == ".ply" ? "comment " : "# ";
+  std::ifstream in(path, std::ios::binary);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line == "end_header" || line.rfind("v ", 0) == 0) break;
+    if (line.rfind(prefix, 0) == 0 && line != prefix + "VesselMesh")
+      comments.push_back(line.substr(prefix.size()));
+  }
+  return comments;
 }
 
 TriMesh read_mesh(const std::string& path) {

@@ -34,6 +34,10 @@ struct WriteOptions {
   /// OBJ: when not empty, a material of this name, written to the file's .mtl twin (white, so that the
   /// vertex colours show as they are) and used by every face.
   std::string material;
+  /// Lines the file keeps about the surface, as PLY `comment` lines or OBJ `#` lines (STL has no place for
+  /// them): `vesselmesh mesh` writes there the loops the surface closed, for `vesselmesh check` to name.
+  /// Line breaks in them are written as spaces.
+  std::vector<std::string> comments;
 };
 
 /// Writes by the lower-case extension:
@@ -61,5 +65,10 @@ void write_mesh(const TriMesh& mesh, const std::string& path, const WriteOptions
 /// for an empty or malformed file, counts the file cannot hold, truncated data, indices out of range,
 /// non-finite coordinates and faces with fewer than 3 vertices.
 TriMesh read_mesh(const std::string& path);
+
+/// The comment lines of a .ply header (after `comment `) or the `#` lines of an .obj before its first
+/// vertex (after `# `), in order, the writer's own `VesselMesh` line left out; none for .stl or a file
+/// that cannot be opened.
+std::vector<std::string> read_mesh_comments(const std::string& path);
 
 }  // namespace vesselmesh
