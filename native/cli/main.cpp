@@ -33,33 +33,49 @@ using namespace vesselmesh;
 
 namespace {
 
-std::string lost_loop_text(const LostLoop& loop);
-
-/// What `info` says of the loops a quick build closes (loops_a_quick_build_closes).
-std::string loops_text(const std::optional<std::vector<LostLoop>>& closed, int64_t loops) {
-  if (loops == 0) return "";
-  if (!closed) return " (too many for a quick build: `vesselmesh mesh` names the loops it closes)";
-  if (closed->empty()) return " (a level-0 build keeps each as a handle)";
-  std::string text = " (a level-0 build closes " + std::to_string(closed->size()) + ":";
-  for (const LostLoop& loop : *closed) text += "\n              " + lost_loop_text(loop);
-  return text + ")";
+std::string point_text(const Vec3& p) {
+  std::ostringstream text;
+  text << std::setprecision(6) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return text.str();
 }
 
-/// The loops a quick build of `g` (level 0, otherwise the default settings) closes, and why: a loop whose
-/// tubes fill its hole may close inside a joint patch (docs/pipeline.md, tile step 4). None without loops;
-/// nullopt where the centerline has over 100,000 points or the build would be over a million triangles (a
-/// second or two on two cores).
-std::optional<std::vector<LostLoop>> loops_a_quick_build_closes(const CenterlineGraph& g) {
-  if (g.loops == 0) return std::vector<LostLoop>();
-  if (g.points.size() > 100'000) return std::nullopt;
+/// A loop the surface closed, and why, in words (MeshResult::lost_loops).
+std::string lost_loop_text(const LostLoop& loop) {
+  return "the loop through the branch from " + point_text(loop.ends[0]) + " to " + point_text(loop.ends[1]) +
+         " closed inside a joint patch: " + loop.why;
+}
+
+/// The loops a quick build of a centerline (level 0, otherwise the default settings) closes, and why: a
+/// loop whose tubes fill its hole may close inside a joint patch (docs/pipeline.md, tile step 4).
+struct QuickBuild {
+  std::vector<LostLoop> closed;
+  std::string not_built;  ///< why there was none: over 100,000 points or a million triangles, or its error
+};
+
+QuickBuild loops_a_quick_build_closes(const CenterlineGraph& g) {
+  if (g.loops == 0) return {};
+  if (g.points.size() > 100'000) return {{}, "over 100,000 points"};
   MeshOptions quick;
   quick.subdivision.levels = 0;
-  quick.max_triangles = 1'000'000;
+  quick.max_triangles = 1'000'000;  // a second or two on two cores
   try {
-    return mesh_centerline(g, quick).lost_loops;
+    return {mesh_centerline(g, quick).lost_loops, ""};
   } catch (const SizeLimitError&) {
-    return std::nullopt;
+    return {{}, "over a million triangles at level 0"};
+  } catch (const std::exception& e) {
+    return {{}, e.what()};
   }
+}
+
+/// What `info` says of the loops a quick build closes.
+std::string loops_text(const QuickBuild& quick, int64_t loops) {
+  if (loops == 0) return "";
+  if (!quick.not_built.empty())
+    return " (no quick build: " + quick.not_built + "; `vesselmesh mesh` names the loops it closes)";
+  if (quick.closed.empty()) return " (a level-0 build keeps each as a handle)";
+  std::string text = " (a level-0 build closes " + std::to_string(quick.closed.size()) + ":";
+  for (const LostLoop& loop : quick.closed) text += "\n              " + lost_loop_text(loop);
+  return text + ")";
 }
 
 void print_info(const CenterlineGraph& g, const std::string& file) {
@@ -104,18 +120,6 @@ void print_info(const CenterlineGraph& g, const std::string& file) {
   }
   std::cout << places.str();
   if (overlaps.size() > kShown) std::cout << "              ... (all of them: --json)\n";
-}
-
-std::string point_text(const Vec3& p) {
-  std::ostringstream text;
-  text << std::setprecision(6) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return text.str();
-}
-
-/// A loop the surface closed, and why, in words (MeshResult::lost_loops).
-std::string lost_loop_text(const LostLoop& loop) {
-  return "the loop through the branch from " + point_text(loop.ends[0]) + " to " + point_text(loop.ends[1]) +
-         " closed inside a joint patch: " + loop.why;
 }
 
 /// The mark of a lost loop's line in a surface file's comments, for `vesselmesh check` to name it.
@@ -289,10 +293,11 @@ int main(int argc, char** argv) {
       const CenterlineGraph graph = build_graph(read_centerline(info_file, options), info_file);
       if (json) {
         nlohmann::ordered_json j = nlohmann::ordered_json::parse(summary_json(graph));
-        const auto closed = loops_a_quick_build_closes(graph);
-        if (graph.loops > 0 && closed) {
+        const QuickBuild quick = loops_a_quick_build_closes(graph);
+        if (graph.loops > 0 && quick.not_built.empty()) {
           j["loops_closed_at_level_0"] = nlohmann::ordered_json::array();
-          for (const LostLoop& loop : *closed) j["loops_closed_at_level_0"].push_back(lost_loop_text(loop));
+          for (const LostLoop& loop : quick.closed)
+            j["loops_closed_at_level_0"].push_back(lost_loop_text(loop));
         }
         std::cout << j.dump(2) << "\n";
       } else {
