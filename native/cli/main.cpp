@@ -132,9 +132,10 @@ void print_lost_loops(const std::vector<LostLoop>& loops) {
   if (loops.size() > 10) std::cerr << "  and " << loops.size() - 10 << " more (--stats-json lists them)\n";
 }
 
-/// `closed`: the loops the file says the surface closed (its lost-loop comments), in words.
+/// `closed`: the loops the surface closed, in words, as `source` says (the file's lost-loop comments, or a
+/// quick build of the centerline).
 void print_check(const CheckReport& r, const std::string& file, const CenterlineGraph* graph,
-                 const std::vector<std::string>& closed) {
+                 const std::vector<std::string>& closed, const std::string& source) {
   const TopologyReport& t = r.topology;
   std::cout << file << "\n"
             << "  closed manifold      " << (t.closed_manifold() ? "yes" : "no") << " (" << t.boundary_edges
@@ -149,7 +150,7 @@ void print_check(const CheckReport& r, const std::string& file, const Centerline
               << (graph->loops > t.genus
                       ? ": " + std::to_string(graph->loops - t.genus) +
                             (closed.empty() ? " closed (`vesselmesh mesh` names the loops it closes, and why)"
-                                            : " closed, as the file says:")
+                                            : " closed; " + source + ":")
                       : ": handles no loop goes round")
               << "\n";
   if (graph && graph->loops > t.genus)
@@ -368,17 +369,27 @@ int main(int argc, char** argv) {
       std::optional<CenterlineGraph> graph;
       if (!check_centerline.empty()) graph = build_graph(read_centerline(check_centerline), check_centerline);
       const CheckReport report = check_mesh(surface, graph ? &*graph : nullptr);
-      std::vector<std::string> closed;  // the loops the file says the surface closed
+      // The loops the surface closed: as the file says, or else as a quick build of the centerline closes
+      // them.
+      std::vector<std::string> closed;
       for (const std::string& line : read_mesh_comments(check_in))
         if (line.rfind(kLostLoopComment, 0) == 0) closed.push_back(line.substr(kLostLoopComment.size()));
+      std::string source = "as the file says", key = "closed_loops";
+      if (closed.empty() && graph && report.topology.closed_manifold() &&
+          report.topology.genus < graph->loops) {
+        for (const LostLoop& loop : loops_a_quick_build_closes(*graph).closed)
+          closed.push_back(lost_loop_text(loop));
+        source = "the file does not say which, a level-0 build of the centerline closes",
+        key = "loops_closed_at_level_0";
+      }
       if (json && closed.empty()) {
         std::cout << report_json(report) << "\n";
       } else if (json) {
         nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(report));
-        j["closed_loops"] = closed;
+        j[key] = closed;
         std::cout << j.dump(2) << "\n";
       } else {
-        print_check(report, check_in, graph ? &*graph : nullptr, closed);
+        print_check(report, check_in, graph ? &*graph : nullptr, closed, source);
       }
       // Status 2 when the surface is not a closed manifold or intersects itself where the tubes do not.
       const auto& x = report.intersections;
