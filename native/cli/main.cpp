@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
           report.topology.genus < graph->loops) {
         for (const LostLoop& loop : loops_a_quick_build_closes(*graph).closed)
           closed.push_back(lost_loop_text(loop));
-        source = "the file does not say which, a level-0 build of the centerline closes",
+        source = "the file does not say which, a level-0 build of the centerline closes";
         key = "loops_closed_at_level_0";
       }
       if (json && closed.empty()) {
