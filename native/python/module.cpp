@@ -416,8 +416,9 @@ PYBIND11_MODULE(vesselmesh_core, m) {
 
   m.def(
       "write_mesh",
-      [](const std::string& path, const Points& vertices, const py::object& faces, const py::object& properties,
-         const py::object& colors, const std::string& material) {
+      [](const std::string& path, const Points& vertices, const py::object& faces,
+         const py::object& properties, const py::object& colors, const std::string& material,
+         const std::vector<std::string>& comments) {
         TriMesh mesh = mesh_from_arrays(vertices, faces);
         if (!properties.is_none())
           for (const auto& [name, values] : py::cast<py::dict>(properties)) {
@@ -430,6 +431,7 @@ PYBIND11_MODULE(vesselmesh_core, m) {
           }
         WriteOptions options;
         options.material = material;
+        options.comments = comments;
         if (!colors.is_none()) {
           const py::array given = py::array::ensure(colors);
           if (!given || !given.dtype().is(py::dtype::of<uint8_t>()) || given.ndim() != 2 ||
@@ -445,32 +447,44 @@ PYBIND11_MODULE(vesselmesh_core, m) {
         py::gil_scoped_release release;
         write_mesh(mesh, path, options);
       },
-      py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("properties") = py::none(),
-      py::arg("colors") = py::none(), py::arg("material") = "",
-      "Write a triangle mesh by the path's extension (.ply .obj .stl): properties {name: (V,) floats} become\n"
-      "PLY float properties; colors (V,3) or (V,4) uint8 sRGB become PLY uchar red green blue [alpha] and OBJ\n"
-      "`v x y z r g b`; material names an OBJ material written to the .mtl beside it. PLY stores positions as\n"
+      py::arg("path"), py::arg("vertices"), py::arg("faces"), py::kw_only(),
+      py::arg("properties") = py::none(), py::arg("colors") = py::none(), py::arg("material") = "",
+      py::arg("comments") = std::vector<std::string>(),
+      "Write a triangle mesh by the path's extension (.ply .obj .stl): properties {name: (V,) floats} "
+      "become\n"
+      "PLY float properties; colors (V,3) or (V,4) uint8 sRGB become PLY uchar red green blue [alpha] and "
+      "OBJ\n"
+      "`v x y z r g b`; material names an OBJ material written to the .mtl beside it. PLY stores positions "
+      "as\n"
       "double where float would merge vertices or flatten faces, OBJ as exact decimals; STL (float only)\n"
-      "refuses such a mesh (RuntimeError saying to write PLY or OBJ).");
+      "refuses such a mesh (RuntimeError saying to write PLY or OBJ). comments: lines kept as PLY `comment` "
+      "or OBJ\n"
+      "`#` lines (STL has no place for them), such as `lost loop: ...` for each of stats['lost_loops'], "
+      "which\n"
+      "`vesselmesh check` names.");
 
   m.def(
       "read_mesh",
       [](const std::string& path) {
         TriMesh mesh;
+        std::vector<std::string> comments;
         {
           py::gil_scoped_release release;
           mesh = read_mesh(path);
+          comments = read_mesh_comments(path);
         }
         py::dict out;
         out["vertices"] = points_array(mesh.vertices);
         out["faces"] = to_array(mesh.faces.empty() ? nullptr : mesh.faces.front().data(),
                                 {static_cast<py::ssize_t>(mesh.faces.size()), 3});
         out["properties"] = property_dict(mesh.vertex_properties);
+        out["comments"] = comments;
         return out;
       },
       py::arg("path"),
-      "Read a .ply, .obj or .stl triangle mesh: dict with vertices (V,3) float64, faces (F,3) int32 and\n"
-      "properties {name: (V,) float32} (PLY's other vertex properties, colours included).");
+      "Read a .ply, .obj or .stl triangle mesh: dict with vertices (V,3) float64, faces (F,3) int32,\n"
+      "properties {name: (V,) float32} (PLY's other vertex properties, colours included) and comments (the\n"
+      "PLY header's comment lines or the OBJ's leading # lines, as write_mesh's comments).");
 
   m.def(
       "surface_distance",

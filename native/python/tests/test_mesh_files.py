@@ -36,6 +36,17 @@ def test_ply_keeps_positions_faces_curvature_and_colours(tmp_path, surface):
         np.testing.assert_array_equal(read["properties"][name], colors[:, channel])
 
 
+def test_comments_are_kept_in_ply_and_obj_and_read_back(tmp_path, surface):
+    v, f = surface["vertices"], surface["faces"]
+    for name in ("s.ply", "s.obj"):
+        vm.write_mesh(str(tmp_path / name), v, f, comments=["lost loop: from (0, 0, 1)", "two\nlines"])
+        assert vm.read_mesh(str(tmp_path / name))["comments"] == ["lost loop: from (0, 0, 1)", "two lines"]
+    vm.write_mesh(str(tmp_path / "s.stl"), v, f, comments=["nowhere to go"])
+    assert vm.read_mesh(str(tmp_path / "s.stl"))["comments"] == []
+    vm.write_mesh(str(tmp_path / "plain.ply"), v, f)
+    assert vm.read_mesh(str(tmp_path / "plain.ply"))["comments"] == []
+
+
 def test_a_surface_far_from_the_origin_keeps_its_positions_in_ply_and_obj_and_stl_is_refused(tmp_path, surface):
     v = surface["vertices"] + 1e9
     f = surface["faces"]
