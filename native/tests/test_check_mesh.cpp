@@ -585,6 +585,22 @@ TEST(TubeOverlaps, AreWhereTheInputTubesOverlapAwayFromTheirJointsAtEveryScale) 
   }
 }
 
+TEST(TubeOverlaps, ABranchHookingBackThroughItsJointsTubesWithinTheJointsReachIsOne) {
+  for (double s : kScales) {
+    // A fat vessel along x (radius 3, its joint's reach 9) and a thin branch (radius 0.5) from its joint
+    // down, across and back up through the fat tube at x = 4, every point within the reach: one place.
+    CenterlineData hook;
+    hook.points = {Vec3(0, 0, 0) * s,  Vec3(-10, 0, 0) * s, Vec3(10, 0, 0) * s,
+                   Vec3(0, -8, 0) * s, Vec3(4, -8, 0) * s,  Vec3(4, 8, 0) * s};
+    hook.edge_radius = {3 * s, 3 * s, 0.5 * s, 0.5 * s, 0.5 * s};
+    hook.edges = {{1, 0}, {0, 2}, {0, 3}, {3, 4}, {4, 5}};
+    EXPECT_EQ(tube_overlaps(build_graph(hook)).size(), 1u) << s;
+    // The same branch turning away instead of back, within the reach: none.
+    hook.points[5] = Vec3(7, -5, 0) * s;
+    EXPECT_TRUE(tube_overlaps(build_graph(hook)).empty()) << s;
+  }
+}
+
 TEST(TubeOverlaps, TubesTracedExactlyTouchingCountWhereverTheDataSetLies) {
   // Two vessels crossing with their axes exactly the sum of their radii apart, in decimal coordinates as
   // a file gives them: whether they touch must not depend on how the position of the data set rounds.

@@ -27,18 +27,24 @@ struct Ball {
   double radius;
 };
 
-// The parameter intervals of segment c0 → c1 that lie outside every ball.
-std::vector<std::array<double, 2>> outside_balls(const Vec3& c0, const Vec3& c1,
-                                                 const std::vector<Ball>& balls) {
-  std::vector<std::array<double, 2>> pieces = {{0.0, 1.0}};
+using Pieces = std::vector<std::array<double, 2>>;  // parameter intervals of a segment
+
+// The parameter interval of segment c0 → c1 inside the ball (empty: lo ≥ hi).
+std::array<double, 2> inside(const Vec3& c0, const Vec3& c1, const Ball& ball) {
   const Vec3 d = c1 - c0;
-  const double a = d.squaredNorm();
-  for (const Ball& ball : balls) {
-    const Vec3 m = c0 - ball.centre;
-    const double b = d.dot(m), discriminant = b * b - a * (m.squaredNorm() - ball.radius * ball.radius);
-    if (a == 0 || discriminant <= 0) continue;
-    const double enter = (-b - std::sqrt(discriminant)) / a, leave = (-b + std::sqrt(discriminant)) / a;
-    std::vector<std::array<double, 2>> kept;
+  const Vec3 m = c0 - ball.centre;
+  const double a = d.squaredNorm(), b = d.dot(m),
+               discriminant = b * b - a * (m.squaredNorm() - ball.radius * ball.radius);
+  if (a == 0 || discriminant <= 0) return {1.0, 0.0};
+  return {(-b - std::sqrt(discriminant)) / a, (-b + std::sqrt(discriminant)) / a};
+}
+
+// The parts of a segment's parameters [0, 1] outside every one of `holes`.
+Pieces outside(const Pieces& holes) {
+  Pieces pieces = {{0.0, 1.0}};
+  for (const auto& [enter, leave] : holes) {
+    if (enter >= leave) continue;
+    Pieces kept;
     for (const auto& [lo, hi] : pieces) {
       if (std::min(hi, enter) > lo) kept.push_back({lo, std::min(hi, enter)});
       if (hi > std::max(lo, leave)) kept.push_back({std::max(lo, leave), hi});
@@ -132,18 +138,27 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       caps_(terminal_caps(g)),
       cap_bvh_(cap_boxes(caps_)),
       crowded_(cones_.size(), 0),
-      leads_out_(cones_.size(), {0, 0}),
+      leads_out_(cones_.size(), {-1.0, -1.0}),
       arc_(cones_.size(), {0.0, 0.0}) {
-  // A branch's edges from each of its ends for as long as they start within the end's reach.
+  // A branch's edges from each of its ends for as long as they start within the end's reach, with how
+  // far from the end the branch has been up to there.
   for (const Branch& b : g.branches) {
     const std::size_t n = b.edges.size();
     const int32_t first = b.points.front(), last = b.points.back();
-    for (std::size_t i = 0;
-         i < n && (g.points[b.points[i]] - g.points[first]).norm() < kJointReach * g.radius[first]; ++i)
-      leads_out_[b.edges[i]][0] = 1;
-    for (std::size_t i = n;
-         i > 0 && (g.points[b.points[i]] - g.points[last]).norm() < kJointReach * g.radius[last]; --i)
-      leads_out_[b.edges[i - 1]][1] = 1;
+    double farthest = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double from_first = (g.points[b.points[i]] - g.points[first]).norm();
+      if (from_first >= kJointReach * g.radius[first]) break;
+      farthest = std::max(farthest, from_first);
+      leads_out_[b.edges[i]][0] = farthest;
+    }
+    farthest = 0;
+    for (std::size_t i = n; i > 0; --i) {
+      const double from_last = (g.points[b.points[i]] - g.points[last]).norm();
+      if (from_last >= kJointReach * g.radius[last]) break;
+      farthest = std::max(farthest, from_last);
+      leads_out_[b.edges[i - 1]][1] = farthest;
+    }
     double arc = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const int32_t e = b.edges[i];
@@ -215,7 +230,22 @@ std::vector<ConeDistance> RoundCones::within(const Vec3& p, double margin) const
 
 bool RoundCones::leads_out_of(int32_t e, int32_t joint) const {
   const Branch& b = graph_.branches[cones_[e].branch];
-  return (b.points.front() == joint && leads_out_[e][0]) || (b.points.back() == joint && leads_out_[e][1]);
+  return (b.points.front() == joint && leads_out_[e][0] >= 0) ||
+         (b.points.back() == joint && leads_out_[e][1] >= 0);
+}
+
+void RoundCones::coming_back(int32_t e, int32_t joint, const std::array<double, 2>& in_ball,
+                             std::vector<std::array<double, 2>>& back) const {
+  const Branch& b = graph_.branches[cones_[e].branch];
+  const RoundCone& k = cones_[e];
+  for (int end : {0, 1}) {
+    if ((end == 0 ? b.points.front() : b.points.back()) != joint) continue;
+    const double nearer = leads_out_[e][end] - graph_.radius[joint];  // negative where e does not lead out
+    if (nearer <= 0) continue;
+    const std::array<double, 2> in = inside(k.c0, k.c1, {graph_.points[joint], nearer});
+    const double lo = std::max({in[0], in_ball[0], 0.0}), hi = std::min({in[1], in_ball[1], 1.0});
+    if (lo < hi) back.push_back({lo, hi});
+  }
 }
 
 bool RoundCones::meet_near(int32_t a, int32_t b, const Vec3& p) const {
@@ -312,22 +342,35 @@ std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
 // Whether the tubes of edges e and f (of different branches) overlap, or come within `margin` of each
 // other, away from the joints their branches share: near a shared joint they meet by design, which is no
 // overlap of the input. Only edges that both lead out of the joint meet there: a branch that has left
-// the joint's reach and comes back through its neighbour's tube overlaps it.
+// the joint's reach and comes back through its neighbour's tube overlaps it, and so does one that comes
+// back within the reach, over a joint radius nearer the joint than it has been (fixture
+// `thin_hook_through_its_fat_joint`).
 bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
-  std::vector<Ball> joints;
-  for (int32_t j : shared_joints(cones_[e].branch, cones_[f].branch))
-    if (leads_out_of(e, j) && leads_out_of(f, j))
-      joints.push_back({graph_.points[j], kJointReach * graph_.radius[j]});
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
-  for (const auto& [s0, s1] : outside_balls(k.c0, k.c1, joints))
-    for (const auto& [t0, t1] : outside_balls(l.c0, l.c1, joints)) {
-      const auto [u, v] = closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
-      const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
-      if ((k.point_at(s) - l.point_at(t)).norm() < (1 + kTouch) * (k.radius_at(s) + l.radius_at(t)) + margin)
-        return true;
+  Pieces in_e, in_f, back_e, back_f;  // in the joints' balls; of those, coming back
+  for (int32_t j : shared_joints(k.branch, l.branch))
+    if (leads_out_of(e, j) && leads_out_of(f, j)) {
+      const Ball ball{graph_.points[j], kJointReach * graph_.radius[j]};
+      in_e.push_back(inside(k.c0, k.c1, ball));
+      in_f.push_back(inside(l.c0, l.c1, ball));
+      coming_back(e, j, in_e.back(), back_e);
+      coming_back(f, j, in_f.back(), back_f);
     }
-  return false;
+  auto meet = [&](const Pieces& ps, const Pieces& qs) {
+    for (const auto& [s0, s1] : ps)
+      for (const auto& [t0, t1] : qs) {
+        const auto [u, v] =
+            closest_parameters(k.point_at(s0), k.point_at(s1), l.point_at(t0), l.point_at(t1));
+        const double s = s0 + u * (s1 - s0), t = t0 + v * (t1 - t0);
+        if ((k.point_at(s) - l.point_at(t)).norm() <
+            (1 + kTouch) * (k.radius_at(s) + l.radius_at(t)) + margin)
+          return true;
+      }
+    return false;
+  };
+  const Pieces whole = {{0.0, 1.0}};
+  return meet(outside(in_e), outside(in_f)) || meet(back_e, whole) || meet(whole, back_f);
 }
 
 std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) const {

@@ -146,6 +146,10 @@ class RoundCones {
   bool folds_onto(int32_t e, int32_t f, double margin = 0) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;
+  /// Adds to `back` the part of `in_ball` (edge e's parameters in the reach of `joint`) where e's branch
+  /// comes back over a joint radius nearer the joint than it has been.
+  void coming_back(int32_t e, int32_t joint, const std::array<double, 2>& in_ball,
+                   std::vector<std::array<double, 2>>& back) const;
 
   const CenterlineGraph& graph_;
   std::vector<RoundCone> cones_;
@@ -155,9 +159,10 @@ class RoundCones {
   Bvh cap_bvh_;  ///< over each cap's neighbourhood, for near_cap()
   std::vector<char> crowded_;  ///< per cone, see crowded()
   bool any_crowded_ = false;
-  /// Per cone: whether it is among the edges leading out of its branch's first (0) or last (1) point,
-  /// those that start within the point's joint reach.
-  std::vector<std::array<char, 2>> leads_out_;
+  /// Per cone: for the edges leading out of its branch's first (0) or last (1) point, those that start
+  /// within the point's joint reach, the farthest from that point the branch has been at the edge's
+  /// start; −1 for the others.
+  std::vector<std::array<double, 2>> leads_out_;
   std::vector<std::array<double, 2>> arc_;  ///< per cone: arc length along its branch at c0 and c1
 };
 
