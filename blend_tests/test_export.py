@@ -68,6 +68,27 @@ def test_ply_in_the_files_unit_undoes_the_import_scale_for_lengths_and_curvature
     np.testing.assert_allclose(read["properties"]["gaussian"], 1e-6 * attribute(surface, "gaussian"), rtol=1e-5)
 
 
+def test_ply_and_obj_name_the_loops_the_surface_closed_as_the_command_line_does(project_data, tmp_path):
+    # A loop of radius 4 filling its own hole at its joint: the surface closes it inside the joint's patch.
+    _, surface = import_file(project_data / "extreme" / "fat_loop_round_a_thin_branch.vtk", scale=0.001)
+    surface.vesselmesh.centerline.location = (0.5, -0.25, 2.0)
+    bpy.context.view_layer.update()
+    lost = json.loads(surface.vesselmesh.stats)["lost_loops"]
+    assert len(lost) == 1
+    matrix = np.array(surface.matrix_world)
+    ends = [1000 * (np.array(p) @ matrix[:3, :3].T + matrix[:3, 3]) for p in lost[0]["joints"]]
+    for fmt in ("PLY", "OBJ"):
+        path = export(surface, tmp_path / f"loop.{fmt.lower()}", file_format=fmt, units="FILE")
+        lines = [c for c in vm.read_mesh(str(path))["comments"] if c.startswith("lost loop: ")]
+        assert len(lines) == 1, fmt
+        assert lines[0].endswith(f"closed inside a joint patch: {lost[0]['why']}"), lines[0]
+        # In the file's unit and world place, as its vertices: the ends of the loop's branch through the patch.
+        written = [np.array([float(x) for x in part.split(")")[0].split(", ")])
+                   for part in lines[0].split("(")[1:3]]
+        np.testing.assert_allclose(written, ends, rtol=1e-5, atol=1e-6)
+    assert not vm.read_mesh(str(export(surface, tmp_path / "loop.stl", file_format="STL")))["comments"]
+
+
 def test_obj_holds_colours_and_a_material_that_blenders_importer_reads(surface, tmp_path):
     path = export(surface, tmp_path / "tree.obj", file_format="OBJ")
     read = vm.read_mesh(str(path))

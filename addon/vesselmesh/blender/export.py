@@ -3,6 +3,7 @@
 PLY (vertex colours and the curvature values as float properties), OBJ (colours and a material) and STL
 are written by the core (vesselmesh_core.write_mesh: positions kept exact where float would not be); glTF
 binary by Blender's exporter, with the colours and the curvature values as custom attributes."""
+import json
 import os
 
 import bpy
@@ -19,18 +20,24 @@ from .operators import say, surface_of
 FORMATS = {"PLY": ".ply", "OBJ": ".obj", "STL": ".stl", "GLB": ".glb"}
 
 
+def placement(surface, units="SCENE"):
+    """(matrix, length factor) from the surface's coordinates to the file's: world, and with units 'FILE'
+    in the centerline file's lengths (the import's scale undone)."""
+    centerline = surface.vesselmesh.centerline
+    scale = centerline.vesselmesh.scale if units == "FILE" and centerline is not None else 1.0
+    return np.array(surface.matrix_world, dtype=np.float64), 1.0 / scale
+
+
 def surface_arrays(surface, units="SCENE"):
     """What a file of the surface holds: world vertices (V,3) float64, faces (F,3), the curvature values
     {name: (V,)} and the colours (V,4) scene-linear, or None. With units 'FILE', lengths are those of the
     centerline's file (the import's scale undone) and curvature values follow."""
     vertices, faces = mesh_data.triangles(surface.data)
-    matrix = np.array(surface.matrix_world, dtype=np.float64)
-    centerline = surface.vesselmesh.centerline
-    scale = centerline.vesselmesh.scale if units == "FILE" and centerline is not None else 1.0
     values = {name: mesh_data.float_attribute(surface.data, name) for name in colors.MEASURES}
     values = {name: v for name, v in values.items() if v is not None}
     rgba = mesh_data.point_colors(surface.data)
-    return exporting.transformed(vertices, faces, matrix, values, 1.0 / scale) + (rgba,)
+    matrix, length_factor = placement(surface, units)
+    return exporting.transformed(vertices, faces, matrix, values, length_factor) + (rgba,)
 
 
 def write(surface, path, fmt=None, units="SCENE", with_colors=True, with_curvature=True):
@@ -43,9 +50,13 @@ def write(surface, path, fmt=None, units="SCENE", with_colors=True, with_curvatu
         return _write_gltf(surface, path, with_colors, with_curvature)
     vertices, faces, values, rgba = surface_arrays(surface, units)
     srgb = colors.linear_to_srgb8(rgba)[:, :3] if with_colors and rgba is not None else None
+    # The loops the surface closed, named as `vesselmesh mesh` names them, for `vesselmesh check` (STL has no
+    # comments).
+    lost = json.loads(surface.vesselmesh.stats or "{}").get("lost_loops", [])
+    comments = exporting.lost_loop_comments(lost, *placement(surface, units)) if fmt != "STL" else []
     core().write_mesh(path, vertices, faces, properties=values if with_curvature and fmt == "PLY" else None,
                       colors=srgb if fmt != "STL" else None,
-                      material=exporting.OBJ_MATERIAL if fmt == "OBJ" else "")
+                      material=exporting.OBJ_MATERIAL if fmt == "OBJ" else "", comments=comments)
     return path
 
 
