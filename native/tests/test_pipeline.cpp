@@ -523,12 +523,13 @@ TEST(Pipeline, VoxelLoopWhoseHoleCrossesItsPatchIsClosedAndNamed) {
 // down to 7 points: a thin vessel leaves a fat joint, turns twice and comes back through the joint's fat
 // tubes, all within the joint's reach. Its tubes overlap theirs there by accident of its path, not by
 // design of the joint; counted as a joint's own overlap, it was not parted, and the surface crossed itself
-// at 40 to 137 pairs at levels 0 to 3.
-TEST(Pipeline, ThinVesselHookingBackThroughItsFatJointIsPartedFromItAndUncrossed) {
+// at 40 to 137 pairs at levels 0 to 3. Parted with the usual shares, the fat vessels, moved close to their
+// joint, which stays, kinked there (4 to 5 % of the area over half a radius off); the hook moves alone.
+TEST(Pipeline, ThinVesselHookingBackThroughItsFatJointIsPartedFromItAndFollowsItsTubes) {
   for_every_scale_and_level("thin_hook_through_its_fat_joint.vtk", 3,
                             [](const MeshResult& r, const CenterlineGraph& g, const std::string& what) {
                               EXPECT_GT(r.separated_points, 0) << what;
-                              expect_closed_and_uncrossed(r, g, what);
+                              expect_on_its_tubes(r, g, what, 0.002, 1.0);
                             });
 }
 

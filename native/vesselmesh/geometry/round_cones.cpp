@@ -171,7 +171,7 @@ RoundCones::RoundCones(const CenterlineGraph& g)
   near_.for_each_overlapping_pair([&](int32_t e, int32_t f) {
     const RoundCone& k = cones_[e];
     const RoundCone& l = cones_[f];
-    if (k.branch != l.branch && overlap(e, f, kCrowd * std::max({k.r0, k.r1, l.r0, l.r1})))
+    if (k.branch != l.branch && overlap(e, f, kCrowd * std::max({k.r0, k.r1, l.r0, l.r1})) != Overlap::none)
       crowded_[e] = crowded_[f] = any_crowded_ = 1;
   });
 }
@@ -291,7 +291,8 @@ bool RoundCones::in_overlapping_tubes(const Vec3& p, const Vec3& q) const {
   const std::vector<int32_t> near_p = near_edges(p), near_q = near_edges(q);
   for (int32_t e : near_p)
     for (int32_t f : near_q)
-      if (cones_[e].branch != cones_[f].branch ? overlap(e, f) : folds_onto(e, f)) return true;
+      if (cones_[e].branch != cones_[f].branch ? overlap(e, f) != Overlap::none : folds_onto(e, f))
+        return true;
   return false;
 }
 
@@ -345,7 +346,7 @@ std::vector<int32_t> RoundCones::near_edges(const Vec3& p) const {
 // the joint's reach and comes back through its neighbour's tube overlaps it, and so does one that comes
 // back within the reach, over a joint radius nearer the joint than it has been (fixture
 // `thin_hook_through_its_fat_joint`).
-bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
+RoundCones::Overlap RoundCones::overlap(int32_t e, int32_t f, double margin) const {
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   Pieces in_e, in_f, back_e, back_f;  // in the joints' balls; of those, coming back
@@ -370,7 +371,10 @@ bool RoundCones::overlap(int32_t e, int32_t f, double margin) const {
     return false;
   };
   const Pieces whole = {{0.0, 1.0}};
-  return meet(outside(in_e), outside(in_f)) || meet(back_e, whole) || meet(whole, back_f);
+  if (meet(outside(in_e), outside(in_f))) return Overlap::apart_from_joints;
+  if (meet(back_e, whole)) return Overlap::first_comes_back;
+  if (meet(whole, back_f)) return Overlap::second_comes_back;
+  return Overlap::none;
 }
 
 std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) const {
@@ -387,7 +391,22 @@ bool RoundCones::tubes_overlap(int32_t e, int32_t f, double gap) const {
   const RoundCone& k = cones_[e];
   const RoundCone& l = cones_[f];
   const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
-  return k.branch != l.branch ? overlap(e, f, margin) : folds_onto(e, f, margin);
+  return k.branch != l.branch ? overlap(e, f, margin) != Overlap::none : folds_onto(e, f, margin);
+}
+
+int32_t RoundCones::coming_back_of(int32_t e, int32_t f, double gap) const {
+  const RoundCone& k = cones_[e];
+  const RoundCone& l = cones_[f];
+  if (k.branch == l.branch) return -1;
+  const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
+  switch (overlap(e, f, margin)) {
+    case Overlap::first_comes_back:
+      return e;
+    case Overlap::second_comes_back:
+      return f;
+    default:
+      return -1;
+  }
 }
 
 std::vector<TubeOverlap> tube_overlaps(const CenterlineGraph& g) { return tube_overlaps(g, RoundCones(g)); }

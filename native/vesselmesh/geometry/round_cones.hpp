@@ -140,9 +140,17 @@ class RoundCones {
   /// True when overlapping_edges(gap) holds the pair (e, f).
   bool tubes_overlap(int32_t e, int32_t f, double gap = 0) const;
 
+  /// Of a pair that tubes_overlap(e, f, gap) holds, on branches sharing a joint: the edge (e or f) whose
+  /// branch overlaps the other only where it comes back towards that joint (a hook through the joint's
+  /// own tubes), or −1.
+  int32_t coming_back_of(int32_t e, int32_t f, double gap = 0) const;
+
  private:
   std::vector<int32_t> near_edges(const Vec3& p) const;
-  bool overlap(int32_t e, int32_t f, double margin = 0) const;
+  /// How the tubes of e and f (of different branches) overlap, see overlapping_edges: away from the joints
+  /// their branches share, or only where one of them comes back towards such a joint.
+  enum class Overlap { none, apart_from_joints, first_comes_back, second_comes_back };
+  Overlap overlap(int32_t e, int32_t f, double margin = 0) const;
   bool folds_onto(int32_t e, int32_t f, double margin = 0) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;

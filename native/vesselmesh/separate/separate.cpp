@@ -417,7 +417,11 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
         away = (k.c1 - k.c0).cross(l.c1 - l.c0);
         away = away.norm() > 0 ? Vec3(away.normalized()) : any_perpendicular(k.c1 - k.c0);
       }
-      const double share_e = re / (re + rf);
+      // Equal shares of their radii; but a branch that hooks back through its joint's own tubes moves
+      // alone: they, moved close to their joint, which stays, would kink there (fixture
+      // `thin_hook_through_its_fat_joint`).
+      const int32_t hook = cones.coming_back_of(e, f, kGap);
+      const double share_e = hook == e ? 1.0 : hook == f ? 0.0 : re / (re + rf);
       push(e, s, share_e * short_by * away, kJointReach * (re + rf));
       push(f, t, -(1 - share_e) * short_by * away, kJointReach * (re + rf));
     }
