@@ -387,19 +387,19 @@ std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) co
   return out;
 }
 
+double RoundCones::gap_margin(int32_t e, int32_t f, double gap) const {
+  return gap * (std::max(cones_[e].r0, cones_[e].r1) + std::max(cones_[f].r0, cones_[f].r1));
+}
+
 bool RoundCones::tubes_overlap(int32_t e, int32_t f, double gap) const {
-  const RoundCone& k = cones_[e];
-  const RoundCone& l = cones_[f];
-  const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
-  return k.branch != l.branch ? overlap(e, f, margin) != Overlap::none : folds_onto(e, f, margin);
+  const double margin = gap_margin(e, f, gap);
+  return cones_[e].branch != cones_[f].branch ? overlap(e, f, margin) != Overlap::none
+                                              : folds_onto(e, f, margin);
 }
 
 int32_t RoundCones::coming_back_of(int32_t e, int32_t f, double gap) const {
-  const RoundCone& k = cones_[e];
-  const RoundCone& l = cones_[f];
-  if (k.branch == l.branch) return -1;
-  const double margin = gap * (std::max(k.r0, k.r1) + std::max(l.r0, l.r1));
-  switch (overlap(e, f, margin)) {
+  if (cones_[e].branch == cones_[f].branch) return -1;
+  switch (overlap(e, f, gap_margin(e, f, gap))) {
     case Overlap::first_comes_back:
       return e;
     case Overlap::second_comes_back:

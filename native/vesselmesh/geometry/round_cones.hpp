@@ -152,6 +152,8 @@ class RoundCones {
   enum class Overlap { none, apart_from_joints, first_comes_back, second_comes_back };
   Overlap overlap(int32_t e, int32_t f, double margin = 0) const;
   bool folds_onto(int32_t e, int32_t f, double margin = 0) const;
+  /// The margin tubes_overlap(e, f, gap) allows: gap times the sum of the two widest radii.
+  double gap_margin(int32_t e, int32_t f, double gap) const;
   std::vector<int32_t> shared_joints(int32_t a, int32_t b) const;
   bool leads_out_of(int32_t e, int32_t joint) const;
   /// Adds to `back` the part of `in_ball` (edge e's parameters in the reach of `joint`) where e's branch
