@@ -533,6 +533,29 @@ TEST(Pipeline, ThinVesselHookingBackThroughItsFatJointIsPartedFromItAndFollowsIt
                             });
 }
 
+// A dense tracing jittered by a fraction of its radius (points a twentieth of a radius apart, moved by up to
+// a quarter radius): its edges turn by any angle and add up to several times the vessel's length. Read
+// edge by edge, its points turning by over 120° were corners (tiled as joints), the separate stage took
+// the jitter for the vessel folding onto itself, and the sampler spaced sections by the jittered length:
+// vmtk-aorta-centerline so jittered (docs/perturbed.py) was a convex blob, a third of its area off the tubes,
+// and this fork one with all of it. (At level 3, 0.28 % of its area, faces in the crotch, lies over half a
+// radius inside the tubes: docs/pipeline.md.)
+TEST(Pipeline, DenseJitteredTracingIsMeshedAsItsVesselsNotTheirJitter) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    const int64_t smooth_sections = mesh_at(build_graph(fixtures::jittered_dense_fork(0, scale)), 0).sections;
+    const CenterlineGraph g = build_graph(fixtures::jittered_dense_fork(0.25, scale));
+    for (int levels = 0; levels <= 2; ++levels) {
+      const std::string what = "scale " + std::to_string(scale) + " level " + std::to_string(levels);
+      const MeshResult r = mesh_at(g, levels);
+      EXPECT_EQ(r.separated_points, 0) << what;
+      EXPECT_EQ(r.joint_patches, 1) << what;
+      EXPECT_EQ(r.absorbed_branches, 0) << what;
+      EXPECT_LE(r.sections, 1.2 * static_cast<double>(smooth_sections)) << what;
+      expect_on_its_tubes(r, g, what, 0.002, 1.0);
+    }
+  }
+}
+
 TEST(Pipeline, SynthesizedNetworksOfSeveralSizesAreClosedUncrossedAndHaveTheirGenus) {
   // The generator keeps non-adjacent tubes apart, so no pair of triangles may cross, loops or not.
   for (int64_t sections : {500, 2000, 6000})

@@ -142,6 +142,7 @@ RoundCones::RoundCones(const CenterlineGraph& g)
       arc_(cones_.size(), {0.0, 0.0}) {
   // A branch's edges from each of its ends for as long as they start within the end's reach, with how
   // far from the end the branch has been up to there.
+  const std::vector<double> length = vessel_lengths(g);
   for (const Branch& b : g.branches) {
     const std::size_t n = b.edges.size();
     const int32_t first = b.points.front(), last = b.points.back();
@@ -162,7 +163,7 @@ RoundCones::RoundCones(const CenterlineGraph& g)
     double arc = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const int32_t e = b.edges[i];
-      const double next = arc + (g.points[b.points[i + 1]] - g.points[b.points[i]]).norm();
+      const double next = arc + length[e];
       arc_[e] =
           g.edges[e][0] == b.points[i] ? std::array<double, 2>{arc, next} : std::array<double, 2>{next, arc};
       arc = next;

@@ -101,8 +101,8 @@ class RoundCones {
   const RoundCone& cone(int32_t e) const { return cones_[e]; }
   std::size_t size() const { return cones_.size(); }
 
-  /// Arc length along cone `e`'s branch, from the branch's first point, at parameter `s` of the cone (0 at
-  /// c0, 1 at c1).
+  /// Arc length along cone `e`'s branch (measured along the vessel: vessel_lengths), from the branch's first
+  /// point, at parameter `s` of the cone (0 at c0, 1 at c1).
   double arc_at(int32_t e, double s) const { return arc_[e][0] + s * (arc_[e][1] - arc_[e][0]); }
   /// Arc length at point `i` of branch `b` (branches[b].points[i]).
   double arc_at_point(int32_t b, int32_t i) const {
@@ -173,7 +173,7 @@ class RoundCones {
   /// within the point's joint reach, the farthest from that point the branch has been at the edge's
   /// start; −1 for the others.
   std::vector<std::array<double, 2>> leads_out_;
-  std::vector<std::array<double, 2>> arc_;  ///< per cone: arc length along its branch at c0 and c1
+  std::vector<std::array<double, 2>> arc_;  ///< per cone: arc length along its branch at c0 and c1 (arc_at)
 };
 
 }  // namespace vesselmesh

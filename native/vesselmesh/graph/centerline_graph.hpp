@@ -66,6 +66,20 @@ constexpr double kCoincidentFraction = 1e-6;
 /// coincident points have merged (points each within a millionth of a radius of the next, all along).
 CenterlineGraph build_graph(const CenterlineData& data, const std::string& source = "centerline");
 
+/// The arc length along the vessel at each of branch `b`'s points (k+1, from 0): the polyline's own, but
+/// where, between two points a radius apart and over four edges or more, it runs more than a quarter longer
+/// than the straight way, that straight way, the points in between shared out as the polyline's arc is.
+/// Points are counted from the first, each next a radius or more from the last one counted (the smaller of
+/// their two radii), and the last point, no more than a radius of its way counted where it lies closer.
+/// Points closer together than their radius and jittered by a fraction of it (a dense tracing of a thick
+/// vessel) turn by any angle from one edge to the next, and their own lengths add up to several times the
+/// vessel's; a smooth curve runs that much longer than its chord only where it bends tighter than its
+/// radius.
+std::vector<double> vessel_arc(const CenterlineGraph& g, const Branch& b);
+
+/// Per edge (E), its length along the vessel (vessel_arc).
+std::vector<double> vessel_lengths(const CenterlineGraph& g);
+
 /// `g` as a file gives a centerline, for writing (write/centerline_vtk.hpp): its edges, the radius per edge
 /// where the input gave it so, else per point, a point given once for each radius the ends of its edges
 /// have (coincident copies where a branch starts thinner from a joint, which build_graph merges back with

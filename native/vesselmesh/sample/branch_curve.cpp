@@ -160,8 +160,7 @@ BranchCurve branch_curve(const CenterlineGraph& graph, const Branch& branch) {
   BranchCurve c;
   for (int32_t v : branch.points) c.points.push_back(graph.points[v]);
   c.radius = branch_radii(graph, branch);
-  c.arc.assign(c.points.size(), 0.0);
-  for (std::size_t i = 1; i < c.points.size(); ++i) c.arc[i] = c.arc[i - 1] + (c.points[i] - c.points[i - 1]).norm();
+  c.arc = vessel_arc(graph, branch);
   std::vector<double> sorted = c.radius;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   c.median_radius = sorted[sorted.size() / 2];

@@ -13,7 +13,7 @@ struct BranchCurve {
   std::vector<Vec3> points;     ///< k+1 points in the branch's order
   std::vector<double> radius;   ///< k+1 radii: the branch's own edge radius at its ends; inside, the mean
                                 ///< of the two edges meeting there
-  std::vector<double> arc;      ///< k+1 cumulative arc lengths, arc[0] = 0
+  std::vector<double> arc;      ///< k+1 arc lengths along the vessel (vessel_arc), arc[0] = 0
   std::vector<double> kappa;    ///< k+1 curvatures of the Gaussian-smoothed curve (1/length)
   std::vector<Vec3> tangents;   ///< k+1 unit tangents of the Gaussian-smoothed curve
   double median_radius = 0;

@@ -33,7 +33,7 @@ constexpr double kSmoothing = 2;
 // second, minutes under the sanitizers (fuzz finding separate-dense-star-timeout).
 class PathLengths {
  public:
-  explicit PathLengths(const CenterlineGraph& g) : g_(g) {}
+  explicit PathLengths(const CenterlineGraph& g) : g_(g), length_(vessel_lengths(g)) {}
 
   // Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
   // `limit`.
@@ -58,11 +58,10 @@ class PathLengths {
     std::unordered_map<int32_t, double> reached;  // point -> its path length from the search's start
   };
   const CenterlineGraph& g_;
+  std::vector<double> length_;  // per edge, along the vessel (vessel_lengths)
   std::unordered_map<int32_t, Search> searches_;
 
-  double length(int32_t edge) const {
-    return (g_.points[g_.edges[edge][1]] - g_.points[g_.edges[edge][0]]).norm();
-  }
+  double length(int32_t edge) const { return length_[edge]; }
 
   // The path lengths from point v to the points closer than `limit` (a Dijkstra search that goes no
   // further), searched again only when a longer limit is asked for.
@@ -87,8 +86,7 @@ class PathLengths {
       queue.pop();
       if (d > reached[u]) continue;
       for (int32_t k = g_.offsets[u]; k < g_.offsets[u + 1]; ++k) {
-        const int32_t w = g_.other(g_.incident[k], u);
-        reach(w, d + (g_.points[w] - g_.points[u]).norm());
+        reach(g_.other(g_.incident[k], u), d + length(g_.incident[k]));
       }
     }
     return search.reached;

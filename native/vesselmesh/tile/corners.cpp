@@ -86,15 +86,15 @@ int32_t tight_bend(const CenterlineGraph& g, const Branch& piece, const Sampling
   return sharpest;
 }
 
-/// Marks the branch's sharp corners: its points that turn by more than kCornerJointDegrees, and where
-/// the branch turns that far within two radii either side of a point (a hairpin drawn over several
-/// short edges: bent tighter than its radius), the sharpest such point, none within two radii of
+/// Marks the branch's sharp corners: its points where it turns by more than kCornerJointDegrees, from
+/// one edge to the next and a radius either side along the vessel (vessel_arc: jitter turns edges, not the
+/// tube), and where the branch turns that far two radii either side of a point (a hairpin drawn over
+/// several short edges: bent tighter than its radius), the sharpest such point, none within two radii of
 /// another corner.
 void mark_corners(const CenterlineGraph& g, const Branch& b, std::vector<char>& corner) {
   const std::size_t k = b.points.size() - 1;
   auto point = [&](std::size_t i) { return g.points[b.points[i]]; };
-  std::vector<double> arc(k + 1, 0.0);
-  for (std::size_t i = 1; i <= k; ++i) arc[i] = arc[i - 1] + (point(i) - point(i - 1)).norm();
+  const std::vector<double> arc = vessel_arc(g, b);
   auto at = [&](double s) {  // the polyline at arc length s, clamped to the branch
     s = std::clamp(s, 0.0, arc[k]);
     const std::size_t i =
@@ -105,14 +105,25 @@ void mark_corners(const CenterlineGraph& g, const Branch& b, std::vector<char>& 
   auto sharp = [](const Vec3& in, const Vec3& out) {
     return in.dot(out) < kCornerJointCosine * in.norm() * out.norm();
   };
+  // The way into point i from `reach` back along the vessel and out to `reach` on; none within half a
+  // radius of the branch's ends, where a way a jitter long has any direction.
+  auto turn = [&](std::size_t i, double reach) {
+    const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
+    const double r = g.radius[b.points[i]];
+    const bool known = in.norm() >= 0.5 * r && out.norm() >= 0.5 * r;
+    return known ? std::pair{in, out} : std::pair{Vec3(Vec3::Zero()), Vec3(Vec3::Zero())};
+  };
   std::vector<std::pair<double, std::size_t>> bends;  // (cosine of the turn within reach, point)
   for (std::size_t i = 1; i < k; ++i) {
+    const double r = g.radius[b.points[i]];
     if (sharp(point(i) - point(i - 1), point(i + 1) - point(i))) {
-      corner[b.points[i]] = 1;
-      continue;
+      const auto [in, out] = turn(i, r);
+      if (sharp(in, out)) {
+        corner[b.points[i]] = 1;
+        continue;
+      }
     }
-    const double reach = 2 * g.radius[b.points[i]];
-    const Vec3 in = point(i) - at(arc[i] - reach), out = at(arc[i] + reach) - point(i);
+    const auto [in, out] = turn(i, 2 * r);
     if (sharp(in, out)) bends.push_back({in.normalized().dot(out.normalized()), i});
   }
   std::sort(bends.begin(), bends.end());
