@@ -2,6 +2,7 @@
 // The project's own centerline fixtures, one per kind of joint and hard case, built in code so that
 // each says what it is. Units are arbitrary: every builder takes a scale.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <ostream>
@@ -217,43 +218,42 @@ inline CenterlineData straight(double length_radii, double scale) {
   return d;
 }
 
+/// `d` with each coordinate of every point moved by up to `jitter` times the point's radius (a fixed
+/// pseudo-random sequence: std::mt19937's numbers are the same on every platform, unlike the
+/// distributions'), as a tracing drawn through a noisy segmentation gives it; the points in `fixed` stay.
+/// `d` gives a radius per point.
+inline CenterlineData jittered(CenterlineData d, double jitter, const std::vector<int32_t>& fixed = {}) {
+  std::mt19937 random(7);
+  for (std::size_t i = 0; i < d.points.size(); ++i) {
+    Vec3 offset;
+    for (int c = 0; c < 3; ++c) offset[c] = (2 * static_cast<double>(random()) / 4294967296.0 - 1) * jitter;
+    if (std::find(fixed.begin(), fixed.end(), static_cast<int32_t>(i)) == fixed.end())
+      d.points[i] += offset * d.radius[i];
+  }
+  return d;
+}
+
 /// A dense tracing of thick vessels, as a centerline drawn through a finely segmented volume gives one: a
 /// trunk of radius 1 along +z, 10 radii long, into a fork whose children (radius 0.8) run on 10 radii, one
 /// straight at 40° from the trunk, the other bending through a quarter circle of 5 radii and on straight;
-/// points 0.05 radii apart, each coordinate but the fork's moved by up to `jitter` of its radius (a fixed
-/// pseudo-random sequence), so that the polyline turns by any angle from one edge to the next.
+/// points 0.05 radii apart, jittered by up to `jitter` of their radius but for the fork's, so that the
+/// polyline turns by any angle from one edge to the next.
 inline CenterlineData jittered_dense_fork(double jitter, double scale) {
-  std::mt19937 random(7);  // its numbers are the same on every platform, unlike the distributions'
-  auto moved = [&](const Vec3& p, double r) {
-    Vec3 offset;
-    for (int i = 0; i < 3; ++i)
-      offset[i] = (2 * static_cast<double>(random()) / 4294967296.0 - 1) * jitter * r;
-    return Vec3(scale * (p + offset));
-  };
   CenterlineData d = start(Vec3(0, 0, -10 * scale), scale);
-  auto add = [&](int32_t from, const Vec3& p, double r) {
-    d.points.push_back(moved(p, r));
-    d.radius.push_back(r * scale);
-    d.edges.push_back({from, static_cast<int32_t>(d.points.size()) - 1});
-    return static_cast<int32_t>(d.points.size()) - 1;
-  };
-  int32_t at = 0;
-  for (int i = 1; i < 200; ++i) at = add(at, Vec3(0, 0, -10 + 0.05 * i), 1);
-  d.points.push_back(Vec3::Zero());
-  d.radius.push_back(scale);
-  d.edges.push_back({at, static_cast<int32_t>(d.points.size()) - 1});
-  const int32_t fork = at + 1;
-  at = fork;
-  for (int i = 1; i <= 200; ++i) at = add(at, 0.05 * i * dir(40), 0.8);
-  at = fork;
+  const int32_t fork = run(d, 0, Vec3::Zero(), 200, scale);
+  run(d, fork, 10 * scale * dir(40), 200, 0.8 * scale);
+  int32_t at = fork;
   const double bend = 5, quarter = M_PI / 2 * bend;  // a quarter circle, then straight on
   for (int i = 1; i <= 200; ++i) {
     const double s = 0.05 * i;
     const Vec3 p = s < quarter ? Vec3(-bend + bend * std::cos(s / bend), 0, bend * std::sin(s / bend))
                                : Vec3(-bend - (s - quarter), 0, bend);
-    at = add(at, p, 0.8);
+    d.points.push_back(scale * p);
+    d.radius.push_back(0.8 * scale);
+    d.edges.push_back({at, static_cast<int32_t>(d.points.size()) - 1});
+    at = static_cast<int32_t>(d.points.size()) - 1;
   }
-  return d;
+  return jittered(d, jitter, {fork});
 }
 
 /// A short vessel that turns back on itself: 0.9 along +z, then 0.8 at 115° from there, radius 1 (paths

@@ -121,6 +121,31 @@ void smoothed_differentials(BranchCurve& c, bool ring) {
   }
 }
 
+/// Points of a jittered stretch, where vessel_arc counted the straight way (an edge's length along the
+/// vessel under nine tenths of its own), moved to the mean of the points within a radius either side along
+/// the vessel, the window no wider than the way to the nearer end (ends stay, and with them the joints): a
+/// tube's sections stand round its axis, not round the jitter (a fork of vessels traced every twentieth of
+/// a radius, jittered by up to a quarter: 0.4 % of its area in the crotch over half a radius inside the
+/// tubes, where its joint's squares stood on jittered points). Elsewhere the points are the tracing's own.
+void settle_jitter(BranchCurve& c) {
+  const std::size_t n = c.points.size();
+  auto jittered = [&](std::size_t e) {  // edge e, from point e to e + 1
+    return c.arc[e + 1] - c.arc[e] < 0.9 * (c.points[e + 1] - c.points[e]).norm();
+  };
+  std::vector<Vec3> settled = c.points;
+  for (std::size_t i = 1, lo = 0, hi = 0; i + 1 < n; ++i) {
+    if (!jittered(i - 1) && !jittered(i)) continue;
+    const double half = std::min({c.radius[i], c.arc[i], c.length() - c.arc[i]});
+    while (c.arc[lo] < c.arc[i] - half) ++lo;
+    hi = std::max(hi, i);
+    while (hi + 1 < n && c.arc[hi + 1] <= c.arc[i] + half) ++hi;
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t j = lo; j <= hi; ++j) sum += c.points[j];
+    settled[i] = sum / static_cast<double>(hi - lo + 1);
+  }
+  c.points = std::move(settled);
+}
+
 }  // namespace
 
 std::size_t BranchCurve::segment(double s) const {
@@ -161,6 +186,7 @@ BranchCurve branch_curve(const CenterlineGraph& graph, const Branch& branch) {
   for (int32_t v : branch.points) c.points.push_back(graph.points[v]);
   c.radius = branch_radii(graph, branch);
   c.arc = vessel_arc(graph, branch);
+  settle_jitter(c);
   std::vector<double> sorted = c.radius;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   c.median_radius = sorted[sorted.size() / 2];
