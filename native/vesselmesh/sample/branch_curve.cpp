@@ -132,6 +132,10 @@ void settle_jitter(BranchCurve& c) {
   auto jittered = [&](std::size_t e) {  // edge e, from point e to e + 1
     return c.arc[e + 1] - c.arc[e] < 0.9 * (c.points[e + 1] - c.points[e]).norm();
   };
+  // Sums of the points from the first, which they are taken from: a window's mean costs the same however
+  // many points it holds (thousands within a radius of one another).
+  std::vector<Vec3> sum(n + 1, Vec3::Zero());
+  for (std::size_t i = 0; i < n; ++i) sum[i + 1] = sum[i] + (c.points[i] - c.points[0]);
   std::vector<Vec3> settled = c.points;
   for (std::size_t i = 1, lo = 0, hi = 0; i + 1 < n; ++i) {
     if (!jittered(i - 1) && !jittered(i)) continue;
@@ -139,9 +143,7 @@ void settle_jitter(BranchCurve& c) {
     while (c.arc[lo] < c.arc[i] - half) ++lo;
     hi = std::max(hi, i);
     while (hi + 1 < n && c.arc[hi + 1] <= c.arc[i] + half) ++hi;
-    Vec3 sum = Vec3::Zero();
-    for (std::size_t j = lo; j <= hi; ++j) sum += c.points[j];
-    settled[i] = sum / static_cast<double>(hi - lo + 1);
+    settled[i] = c.points[0] + (sum[hi + 1] - sum[lo]) / static_cast<double>(hi - lo + 1);
   }
   c.points = std::move(settled);
 }
