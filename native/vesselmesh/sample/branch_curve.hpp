@@ -1,6 +1,7 @@
 #pragma once
-// A branch of the centerline graph as a continuous curve, parameterised by arc length: position,
-// radius and centerline curvature at any arc position, by linear interpolation between its points.
+// A branch of the centerline graph as a continuous curve, parameterised by its length along the vessel
+// (vessel_arc): position, radius and centerline curvature at any arc position, by linear interpolation
+// between its points.
 
 #include <utility>
 #include <vector>
@@ -10,7 +11,7 @@
 namespace vesselmesh {
 
 struct BranchCurve {
-  std::vector<Vec3> points;     ///< k+1 points in the branch's order
+  std::vector<Vec3> points;     ///< k+1 points in the branch's order; a jittered stretch's on its axis
   std::vector<double> radius;   ///< k+1 radii: the branch's own edge radius at its ends; inside, the mean
                                 ///< of the two edges meeting there
   std::vector<double> arc;      ///< k+1 arc lengths along the vessel (vessel_arc), arc[0] = 0
