@@ -343,6 +343,13 @@ Separation separate_crossings(const CenterlineGraph& g, const RoundCones& input_
       to_separate(g, input_cones, crossing_edges(g, input_cones, kGap));
   out.crossings = out.left = static_cast<int64_t>(in_input.size());
   if (in_input.empty()) return out;
+  // A tangle in the input already (below) is left at once: points added every quarter radius round each of
+  // its crossings made the graph several times as large, and the search over it quadratic (a cloud of 5,000
+  // points within one radius, as one branch: 32 s).
+  if (in_input.size() > kTangle * g.edges.size()) {
+    out.tangle = true;
+    return out;
+  }
   out.graph = with_points_where_edges_cross(g, input_cones, in_input);
   CenterlineGraph& h = out.graph;
   const std::vector<Vec3> start = h.points;
