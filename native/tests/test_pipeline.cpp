@@ -390,6 +390,16 @@ TEST(Pipeline, DISABLED_FatTrunkWithASideBranchAtEveryPointFollowsItsTubes) {
   }
 }
 
+// Not met yet: a branch 20 or 50 times thinner than the trunk it leaves at 45° (fixtures::perforator) has a
+// flare of spiky faces at the junction, 1.3 to 4.1 of its radii off the tubes at levels 1 to 3 (0.9 at 10
+// times thinner; at 90° none over 0.3): the joint's hull spans from the trunk's squares to the thin one's,
+// which stands out beyond them. Run with --gtest_also_run_disabled_tests.
+TEST(Pipeline, DISABLED_ThinBranchLeavingAFatTrunkFollowsItsTubes) {
+  for (double step : {20.0, 50.0})
+    expect_on_its_tubes_at_every_scale([&](double scale) { return fixtures::perforator(step, 45, scale); }, 3,
+                                       0.002, 1.0, "step " + std::to_string(step) + " ");
+}
+
 // Not met before a short tube that no fold-free sections join to its two squares was no tube: it folded
 // between two patches whose squares faced it from sides a right angle apart (9, 24, 61 and 105 crossing
 // pairs at levels 0 to 3; brava-records BH0005 crossed itself so).
