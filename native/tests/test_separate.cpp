@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <random>
 #include <string>
 
 #include "fixtures.hpp"
@@ -222,5 +223,28 @@ TEST(Separate, TerminalBranchesHiddenInsideOtherTubesAreDroppedRoundByRound) {
     EXPECT_EQ(drop_hidden_terminals(g, cones, kept), 4) << scale;
     EXPECT_EQ(kept.points, h.graph.points) << scale;
     EXPECT_EQ(cones->size(), kept.edges.size()) << scale;
+  }
+}
+
+// A cloud of points within one radius, read as one branch, is a tangle in the input already: left as it is
+// without its crossings told apart and refined, its overlapping pairs counted only to just past a tangle's
+// (32 a piece of tube). Counted in full and refined, 5,000 such points took 32 s and 20,000 223 s, their 200
+// million pairs kept.
+TEST(Separate, ACloudOfPointsIsATangleCountedNoFurtherThanATangle) {
+  for (double scale : {1e-3, 1.0, 1e3}) {
+    CenterlineData d;
+    std::mt19937 random(3);
+    for (int i = 0; i < 600; ++i) {
+      Vec3 p;
+      for (int c = 0; c < 3; ++c) p[c] = (static_cast<double>(random()) / 4294967296.0 - 0.5) * scale;
+      d.points.push_back(p);
+      d.radius.push_back(scale);
+      if (i > 0) d.edges.push_back({i - 1, i});
+    }
+    const CenterlineGraph g = build_graph(d);
+    const Separation s = separate_crossings(g, RoundCones(g));
+    EXPECT_TRUE(s.tangle) << scale;
+    EXPECT_LE(s.crossings, static_cast<int64_t>(32 * g.edges.size() + 1)) << scale;
+    EXPECT_EQ(s.graph.points.size(), g.points.size()) << scale;
   }
 }

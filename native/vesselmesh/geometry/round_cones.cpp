@@ -378,11 +378,11 @@ RoundCones::Overlap RoundCones::overlap(int32_t e, int32_t f, double margin) con
   return Overlap::none;
 }
 
-std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap) const {
+std::vector<std::array<int32_t, 2>> RoundCones::overlapping_edges(double gap, std::size_t most) const {
   std::vector<std::array<int32_t, 2>> out;
   // Boxes widened by kNearTube radii hold every pair within half the sum of their radii of each other.
   (gap > 0 ? near_ : tight_).for_each_overlapping_pair([&](int32_t e, int32_t f) {
-    if (tubes_overlap(e, f, gap)) out.push_back({std::min(e, f), std::max(e, f)});
+    if (out.size() <= most && tubes_overlap(e, f, gap)) out.push_back({std::min(e, f), std::max(e, f)});
   });
   std::sort(out.begin(), out.end());
   return out;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "vesselmesh/geometry/bvh.hpp"
@@ -136,7 +137,9 @@ class RoundCones {
   /// The pairs of edges (e < f) whose tubes overlap as in_overlapping_tubes() counts it: of two branches
   /// away from the joints they share, or of one branch that comes back onto itself. With `gap` > 0 (at
   /// most 0.5), also those whose tubes come within `gap` times the sum of their larger radii of each other.
-  std::vector<std::array<int32_t, 2>> overlapping_edges(double gap = 0) const;
+  /// Past `most` pairs it tests no more (a caller asking whether there are that many: a tangle).
+  std::vector<std::array<int32_t, 2>> overlapping_edges(
+      double gap = 0, std::size_t most = std::numeric_limits<std::size_t>::max()) const;
   /// True when overlapping_edges(gap) holds the pair (e, f).
   bool tubes_overlap(int32_t e, int32_t f, double gap = 0) const;
 

@@ -39,6 +39,8 @@ std::vector<std::array<int32_t, 2>> crossing_edges(const CenterlineGraph& g, con
 struct Separation {
   CenterlineGraph graph;     ///< the input, the vessels moved apart (with points added where they were)
   int64_t crossings = 0;     ///< edge pairs to move apart in the input: crossing, or passing close by a joint
+                             ///< (where the input is a tangle already, its overlapping pairs, counted up to
+                             ///< just past the tangle's)
   int64_t moved_points = 0;  ///< points moved
   double largest_move = 0;   ///< the largest move, relative to the moved point's radius
   int64_t left = 0;          ///< such pairs left when the rounds ran out (0 but in a tangle)
