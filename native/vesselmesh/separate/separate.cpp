@@ -33,7 +33,7 @@ constexpr double kSmoothing = 2;
 // second, minutes under the sanitizers (fuzz finding separate-dense-star-timeout).
 class PathLengths {
  public:
-  explicit PathLengths(const CenterlineGraph& g) : g_(g), length_(vessel_lengths(g)) {}
+  PathLengths(const CenterlineGraph& g, const RoundCones& cones) : g_(g), cones_(cones) {}
 
   // Whether the centerline path from parameter s of edge e to parameter t of edge f is shorter than
   // `limit`.
@@ -58,10 +58,11 @@ class PathLengths {
     std::unordered_map<int32_t, double> reached;  // point -> its path length from the search's start
   };
   const CenterlineGraph& g_;
-  std::vector<double> length_;  // per edge, along the vessel (vessel_lengths)
+  const RoundCones& cones_;
   std::unordered_map<int32_t, Search> searches_;
 
-  double length(int32_t edge) const { return length_[edge]; }
+  // Along the vessel (vessel_lengths), as the cones measure their branches.
+  double length(int32_t edge) const { return std::abs(cones_.arc_at(edge, 1) - cones_.arc_at(edge, 0)); }
 
   // The path lengths from point v to the points closer than `limit` (a Dijkstra search that goes no
   // further), searched again only when a longer limit is asked for.
@@ -247,7 +248,7 @@ std::vector<std::array<int32_t, 2>> crossing_among(const CenterlineGraph& g, con
     if (fresh) it->second = joint_overlaps.extent(a, b, j);
     return from_j <= it->second && (from_j <= reach || it->second <= 2 * reach);
   };
-  PathLengths paths(g);
+  PathLengths paths(g, cones);
   std::vector<std::array<int32_t, 2>> out;
   for (const auto& [e, f] : overlapping) {
     const RoundCone& k = cones.cone(e);
